@@ -491,10 +491,7 @@ constexpr FixedParse<F> parse_fixed(std::string_view text) {
   std::array<char, 2 * k_max_fraction_digits + 64> frac{};
   size_t frac_count = 0;
   if (point < 0) {
-    if (-point > static_cast<int64_t>(k_max_fraction_digits)) {
-      // Far below half a raw unit: rounds to zero.
-      return out;
-    }
+    if (-point > 20) return out;  // value < 10^-20: far below half a raw unit, rounds to zero
     for (int64_t k = 0; k < -point; ++k) frac[frac_count++] = 0;
   }
   for (size_t k = point > 0 ? static_cast<size_t>(point) : 0; k < count; ++k) {
