@@ -46,6 +46,24 @@ inline constexpr int k_max_polygon_vertices = 8;
 inline constexpr Q32 k_min_polygon_area = 0.000001_q32;
 /// Points closer than this are welded by compute_hull (metres).
 inline constexpr Q32 k_weld_tolerance = 0.0005_q32;
+/// Most input points compute_hull accepts (interior and duplicate points
+/// included); the hull itself may have at most k_max_polygon_vertices.
+inline constexpr int k_max_hull_input_points = 64;
+/// validate_polygon: largest accepted difference of each normal component
+/// from the exact unit normal of its edge (2^-18 ≈ 3.8e-6, dimensionless).
+inline constexpr Q32 k_polygon_normal_tolerance = Q32::from_raw(int64_t{1} << 14);
+/// validate_polygon: largest accepted difference of each centroid coordinate
+/// from the vertices' centroid (2^-20 m ≈ 9.5e-7 m).
+inline constexpr Q32 k_polygon_centroid_tolerance = Q32::from_raw(int64_t{1} << 12);
+/// Support-point steps of one shape_distance (GJK) call.
+inline constexpr int32_t k_max_gjk_iterations = 20;
+/// Conservative-advancement steps of one shape_cast call.
+inline constexpr int32_t k_max_cast_iterations = 20;
+/// Conservative-advancement steps of one time_of_impact call.
+inline constexpr int32_t k_max_toi_iterations = 50;
+/// time_of_impact's cap on the angular-speed bound of a sweep's rotation
+/// (rad per sweep); reached only for turns above ~175° per sweep.
+inline constexpr Q32 k_max_nlerp_rate = 50_q32;
 
 // ---------------------------------------------------------------------------
 // Shapes
@@ -80,8 +98,9 @@ struct Segment {
   Vec2 point2;  ///< local, m
 };
 
-/// One segment of a chain: one-sided (solid on the right of point1→point2,
-/// i.e. normal = right_perp(direction)), with the neighbouring vertices
+/// One segment of a chain: one-sided, with the outward normal
+/// right_perp(point2 − point1) (as in Box2D: the solid is on the LEFT of
+/// point1→point2, collision on the right), with the neighbouring vertices
 /// (ghosts) so that a body sliding across an inner vertex does not catch.
 struct ChainSegment {
   Vec2 ghost1;      ///< the previous chain vertex, local, m
@@ -109,34 +128,47 @@ struct Hull {
   int32_t count = 0;
 };
 
-/// Computes the convex hull of a point cloud (1 … k_max_polygon_vertices
-/// input points after welding): welds points closer than k_weld_tolerance,
-/// drops collinear points, and rejects degenerate input — too few distinct
-/// points, all collinear, too small an area — with a message. Deterministic:
-/// the same points in any order give the same hull, starting from the
-/// lowest-then-leftmost point.
+/// Computes the convex hull of a point cloud (3 … k_max_hull_input_points
+/// points, coordinates within ±k_max_shape_size): welds points closer than
+/// k_weld_tolerance, drops (near-)collinear points — those within
+/// k_linear_slop of the line through their hull neighbours — and rejects
+/// degenerate input — too few distinct points, all collinear, too small an
+/// area, more than k_max_polygon_vertices hull vertices — with a message.
+/// Deterministic: the same points in any order give the same hull bits,
+/// counter-clockwise from the lowest-then-leftmost point. On error *out_hull
+/// is empty (count 0).
 GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull);
 
-/// Makes a polygon from a hull with an optional rounding radius (≥ 0).
+/// Makes a polygon from a hull with an optional rounding radius (≥ 0):
+/// checks the hull (3…8 vertices, strictly convex, CCW, in range, area) and
+/// computes the unit normals and the area centroid (within 1 raw unit). On
+/// error *out_polygon is empty (count 0).
 GeometryStatus make_polygon(const Hull& hull, Q32 radius, Polygon* out_polygon);
 
 /// Makes a polygon from a point cloud: compute_hull then make_polygon.
 GeometryStatus make_polygon_from_points(const Vec2* points, int32_t count, Q32 radius, Polygon* out_polygon);
 
-/// An axis-aligned box centred on the origin (half widths > 0, m).
+/// An axis-aligned box centred on the origin (half widths within
+/// [k_min_shape_size, k_max_shape_size], m). Exact: vertices ±half extents
+/// CCW from (−hw, −hh), axis normals, centroid 0.
 GeometryStatus make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon);
 /// A box centred at `center`, rotated by `angle` radians, with a rounding
 /// radius (≥ 0).
 GeometryStatus make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32 angle, Q32 radius,
                                Polygon* out_polygon);
 
-/// Checks a circle (radius > 0, in range).
+/// Checks a circle (radius within [k_min_shape_size, k_max_shape_size],
+/// centre ± radius within ±k_max_shape_size).
 GeometryStatus validate_circle(const Circle& circle);
-/// Checks a capsule (radius > 0, centres at least k_linear_slop apart).
+/// Checks a capsule (radius as for a circle, centres in range and at least
+/// k_linear_slop apart).
 GeometryStatus validate_capsule(const Capsule& capsule);
 /// Checks a segment (end points at least k_linear_slop apart).
 GeometryStatus validate_segment(const Segment& segment);
-/// Checks a polygon made by hand: convex, CCW, unit normals, count in range.
+/// Checks a polygon made by hand: count in range, strictly convex, CCW,
+/// coordinates in range, area ≥ k_min_polygon_area, radius in [0,
+/// k_max_shape_size], each normal within k_polygon_normal_tolerance of its
+/// edge's unit outward normal, centroid within k_polygon_centroid_tolerance.
 GeometryStatus validate_polygon(const Polygon& polygon);
 
 // ---------------------------------------------------------------------------
@@ -150,11 +182,16 @@ struct MassData {
   Q32 rotational_inertia;  ///< about the centre of mass, kg·m²
 };
 
-/// Mass of a circle with density in kg/m².
+/// Mass of a circle with density in kg/m²: m = ρπr², I = m·r²/2 (a few raw
+/// units of rounding). Saturates (fault) when ρπr⁴/2 leaves the range.
 MassData compute_circle_mass(const Circle& circle, Q32 density);
-/// Mass of a capsule with density in kg/m².
+/// Mass of a capsule with density in kg/m²: exact closed form (rectangle
+/// plus two half discs), inertia about the centre of mass.
 MassData compute_capsule_mass(const Capsule& capsule, Q32 density);
-/// Mass of a (rounded) polygon with density in kg/m².
+/// Mass of a (rounded) polygon with density in kg/m²: exact, the rounded
+/// polygon being the core plus edge rectangles plus vertex sectors (not
+/// Box2D's pushed-out-vertices approximation). Inertia about the centre of
+/// mass; saturates (fault) around ρ·s⁴ ≈ 2.5·10^10 for diameter s.
 MassData compute_polygon_mass(const Polygon& polygon, Q32 density);
 
 /// World bounds of each shape under a transform.
@@ -190,9 +227,11 @@ bool point_in_circle(Vec2 point, const Circle& circle);
 bool point_in_capsule(Vec2 point, const Capsule& capsule);
 bool point_in_polygon(Vec2 point, const Polygon& polygon);
 
-/// Ray casts in the shape's local frame. A ray starting inside a solid shape
-/// does not hit it (as in Box2D). Segments are two-sided; chain segments
-/// one-sided (hit only from the solid's outside, the left of point1→point2).
+/// Ray casts in the shape's local frame. A ray starting inside or on a solid
+/// shape does not hit it (as in Box2D). max_fraction is clamped to [0, 1].
+/// Segments are two-sided; chain segments (one_sided) are hit only by rays
+/// starting on the right of point1→point2 (the side their normal
+/// right_perp(point2 − point1) points to). Exact for rounded polygons.
 CastOutput ray_cast_circle(const RayCastInput& input, const Circle& circle);
 CastOutput ray_cast_capsule(const RayCastInput& input, const Capsule& capsule);
 CastOutput ray_cast_polygon(const RayCastInput& input, const Polygon& polygon);
@@ -210,7 +249,8 @@ struct ShapeProxy {
   Q32 radius;
 };
 
-/// Makes a proxy from points (count ≥ 1) and a radius.
+/// Makes a proxy from points and a radius. count is clamped to
+/// k_max_polygon_vertices; a null or empty list gives one point at the origin.
 ShapeProxy make_proxy(const Vec2* points, int32_t count, Q32 radius);
 ShapeProxy make_proxy(const Circle& circle);
 ShapeProxy make_proxy(const Capsule& capsule);
@@ -237,7 +277,13 @@ struct DistanceOutput {
 };
 
 /// GJK distance between two convex shapes, with witness points. Starts from
-/// an empty simplex every call (no cache), so results depend only on input.
+/// an empty simplex every call (no cache), so results depend only on input;
+/// at most k_max_gjk_iterations support steps (the result is then the
+/// closest point of the last simplex, an upper bound). Works in A's frame;
+/// the shapes' extents plus separation must stay below ~30,000 m.
+/// With use_radii and overlapping rounded surfaces (but separate cores) the
+/// distance is 0 and the points stay on the two surfaces; with touching
+/// cores both points are the midpoint and the normal is zero.
 DistanceOutput shape_distance(const DistanceInput& input);
 
 /// Input to shape_cast: proxy B moves by translation_b relative to fixed A
@@ -253,7 +299,12 @@ struct ShapeCastInput {
 };
 
 /// Linear shape cast: the first fraction of translation_b at which B touches
-/// A (conservative advancement on GJK).
+/// A (conservative advancement on GJK, ≤ k_max_cast_iterations). "Touches"
+/// means the core distance reaches max(linear slop, rA + rB − linear slop)
+/// within slop/4 (Box2D's target). normal is the unit normal from A to B,
+/// point lies on A's surface. Starting that close gives a hit at fraction 0
+/// (unless can_encroach). No hit when moving apart, beyond max_fraction, or
+/// when the iterations run out.
 CastOutput shape_cast(const ShapeCastInput& input);
 
 /// A body's motion over a step for time of impact: the centre of mass moves
@@ -287,7 +338,12 @@ struct ToiOutput {
 };
 
 /// Time of impact of two moving (translating and rotating) convex shapes:
-/// the first time they come within linear slop, by conservative advancement.
+/// the first time the core distance comes within slop/4 of max(linear slop,
+/// rA + rB − linear slop), by conservative advancement (≤
+/// k_max_toi_iterations). hit: fraction is that time; overlapped: the cores
+/// overlap at fraction; separated: no contact before max_fraction (fraction =
+/// max_fraction); failed: iterations ran out, fraction is a time before the
+/// contact.
 ToiOutput time_of_impact(const ToiInput& input);
 
 // ---------------------------------------------------------------------------

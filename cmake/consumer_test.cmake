@@ -1,0 +1,56 @@
+# consumer_test.cmake — ctest's "install/consumer" test (cmake -P).
+#
+# 1. installs the build in TANDEM_BINARY_DIR to WORK_DIR/prefix;
+# 2. configures, builds and runs tests/consumer there with find_package(Tandem);
+# 3. compiles tests/consumer/main.cpp again with `pkg-config --cflags --libs
+#    tandem` (PKG_CONFIG_PATH pointing into the prefix) and runs it.
+# Any failing step fails the test with the step's output.
+foreach(var TANDEM_BINARY_DIR TANDEM_CONSUMER_DIR WORK_DIR CXX GENERATOR LIBDIR PKG_CONFIG)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "consumer_test.cmake: ${var} is not set")
+  endif()
+endforeach()
+if(NOT BUILD_TYPE)
+  set(BUILD_TYPE Release)
+endif()
+
+# step(NAME COMMAND...): runs a command, echoes its output, stops on failure.
+function(step name)
+  message(STATUS "consumer test: ${name}")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "consumer test: ${name} failed (${rc}):\n${out}")
+  endif()
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+set(prefix ${WORK_DIR}/prefix)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+step("install to ${prefix}" ${CMAKE_COMMAND} --install ${TANDEM_BINARY_DIR} --prefix ${prefix})
+foreach(f ${LIBDIR}/cmake/Tandem/TandemConfig.cmake ${LIBDIR}/pkgconfig/tandem.pc include/tandem/fixed/fixed.h)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "consumer test: ${f} was not installed")
+  endif()
+endforeach()
+
+# --- find_package(Tandem) --------------------------------------------------------
+step("configure tests/consumer" ${CMAKE_COMMAND} -S ${TANDEM_CONSUMER_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
+  -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DCMAKE_PREFIX_PATH=${prefix}
+  -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+step("build tests/consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+step("run the CMake consumer" ${WORK_DIR}/build/tandem_consumer)
+message(STATUS "${step_output}")
+
+# --- pkg-config ----------------------------------------------------------------
+set(ENV{PKG_CONFIG_PATH} ${prefix}/${LIBDIR}/pkgconfig)
+step("pkg-config --cflags tandem" ${PKG_CONFIG} --cflags tandem)
+string(STRIP "${step_output}" cflags)
+step("pkg-config --libs tandem" ${PKG_CONFIG} --libs tandem)
+string(STRIP "${step_output}" libs)
+separate_arguments(cflags UNIX_COMMAND "${cflags}")
+separate_arguments(libs UNIX_COMMAND "${libs}")
+step("compile with pkg-config flags" ${CXX} ${cflags} ${TANDEM_CONSUMER_DIR}/main.cpp -o ${WORK_DIR}/pc_consumer ${libs})
+step("run the pkg-config consumer" ${WORK_DIR}/pc_consumer)
+message(STATUS "${step_output}")

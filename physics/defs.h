@@ -1,0 +1,113 @@
+// defs.h — definition structs for worlds, bodies and shapes, and the
+// default_*_def() functions that make them. Nothing else lives here.
+//
+// Every field has a default and a unit. Get a definition only from its
+// default_*_def() function, then change the fields you need: the function
+// stamps `internal_cookie`, and create_world / create_body / create_*_shape
+// refuse (with a Status naming the struct) a definition whose cookie is
+// missing — a definition made as `BodyDef def{}` would otherwise silently
+// carry zeroes where the defaults below were meant (Box2D types.c does the
+// same with an assert; here it is a checked error in every build).
+//
+// All quantities are Q32.32 in SI units: metres, seconds, kilograms, radians.
+// Where a value must lie in a range, the range is stated; create_* checks it
+// and refuses values outside (see tandem.h for the limits).
+#pragma once
+
+#include <cstdint>
+
+#include "fixed/fixed.h"
+#include "fixed/vec2.h"
+#include "physics/limits.h"
+
+namespace tandem {
+
+/// The value default_*_def() writes into internal_cookie ("TAND").
+inline constexpr int32_t k_def_cookie = 0x54414E44;
+
+/// Which broad phase a world uses. Only the naive all-pairs one exists yet;
+/// the broad-phase issue adds the others.
+enum class BroadPhaseKind : int32_t {
+  naive = 0,  ///< every shape AABB against every other, in shape id order
+};
+
+/// How a body moves.
+enum class BodyType : int32_t {
+  static_body = 0,     ///< never moves; zero velocity; infinite mass
+  kinematic_body = 1,  ///< moves at its set velocity; ignores forces, gravity and contacts; infinite mass
+  dynamic_body = 2,    ///< moved by gravity, forces, impulses and contacts; positive mass
+};
+
+/// Settings of a world. Make with default_world_def().
+struct WorldDef {
+  Vec2 gravity;                    ///< m/s²; default (0, −10); each component |g| ≤ k_max_gravity
+  int32_t sub_step_count = 0;      ///< solver sub-steps per step; default 4; 1…k_max_sub_steps
+  Q32 contact_hertz;               ///< contact stiffness, Hz; default 30; (0, k_max_hertz]
+  Q32 contact_damping_ratio;       ///< contact damping, dimensionless; default 10; [0, k_max_damping_ratio]
+  Q32 max_contact_push_speed;      ///< fastest overlap recovery, m/s; default 3; [0, max_linear_speed]
+  Q32 joint_hertz;                 ///< joint stiffness, Hz; default 60; (0, k_max_hertz]
+  Q32 joint_damping_ratio;         ///< joint damping, dimensionless; default 2; [0, k_max_damping_ratio]
+  Q32 restitution_threshold;       ///< approach speed below which restitution is ignored, m/s; default 1;
+                                   ///< [0, max_linear_speed]
+  Q32 max_linear_speed;            ///< bodies are slowed to this speed each sub-step, m/s; default 400;
+                                   ///< (0, k_max_linear_speed]
+  AABB bounds;                     ///< bodies must start and stay inside, m; default ±k_max_world_coordinate;
+                                   ///< must lie within ±k_max_world_coordinate with lower < upper
+  bool enable_sleep = true;        ///< let resting bodies sleep (the sleep task uses it); default true
+  BroadPhaseKind broad_phase = BroadPhaseKind::naive;  ///< default naive
+  uint64_t user_data = 0;          ///< any integer, for the application; default 0
+  int32_t internal_cookie = 0;     ///< set by default_world_def(); do not touch
+};
+
+/// Settings of a new body. Make with default_body_def().
+struct BodyDef {
+  BodyType type = BodyType::static_body;  ///< default static
+  Vec2 position;                          ///< world position of the body origin, m; default (0, 0);
+                                          ///< inside the world bounds
+  Rot rotation;                           ///< world rotation; default identity; any non-zero (c, s),
+                                          ///< normalised on creation
+  Vec2 linear_velocity;                   ///< of the centre of mass, m/s; default 0;
+                                          ///< |v| ≤ world max_linear_speed; must be 0 for static bodies
+  Q32 angular_velocity;                   ///< rad/s; default 0; |ω| ≤ k_max_angular_speed; 0 for static
+  Q32 linear_damping;                     ///< 1/s; default 0; [0, k_max_damping]
+  Q32 angular_damping;                    ///< 1/s; default 0; [0, k_max_damping]
+  Q32 gravity_scale;                      ///< dimensionless; default 1; |s| ≤ k_max_gravity_scale
+  uint64_t user_data = 0;                 ///< any integer, for the application; default 0
+  bool enable_sleep = true;               ///< may this body sleep; default true
+  bool is_awake = true;                   ///< start awake; default true
+  bool fixed_rotation = false;            ///< never rotate (infinite rotational inertia); default false
+  bool is_bullet = false;                 ///< continuous collision against dynamic bodies (later task);
+                                          ///< default false
+  bool is_enabled = true;                 ///< take part in the simulation; default true
+  int32_t internal_cookie = 0;            ///< set by default_body_def(); do not touch
+};
+
+/// Collision filtering: shapes A and B may collide when
+/// (A.category & B.mask) != 0 and (B.category & A.mask) != 0, unless both
+/// share a non-zero group: a positive shared group always collides, a negative
+/// one never does (applied by the contact task).
+struct Filter {
+  uint64_t category_bits = 1;        ///< the layers this shape is on; default layer 1
+  uint64_t mask_bits = UINT64_MAX;   ///< the layers it collides with; default all
+  int32_t group_index = 0;           ///< default 0 (no group)
+};
+
+/// Settings of a new shape. Make with default_shape_def().
+struct ShapeDef {
+  Q32 friction;                 ///< Coulomb coefficient, dimensionless; default 0.6; [0, k_max_friction]
+  Q32 restitution;              ///< bounciness, dimensionless; default 0; [0, 1]
+  Q32 density;                  ///< kg/m²; default 1; (0, k_max_density]
+  Filter filter;                ///< default: category 1, mask all, group 0
+  uint64_t user_data = 0;       ///< any integer, for the application; default 0
+  bool is_sensor = false;       ///< detects overlap, never pushes (sensor events come later); default false
+  int32_t internal_cookie = 0;  ///< set by default_shape_def(); do not touch
+};
+
+/// A world definition with every default filled in (see WorldDef).
+WorldDef default_world_def();
+/// A body definition with every default filled in (see BodyDef).
+BodyDef default_body_def();
+/// A shape definition with every default filled in (see ShapeDef).
+ShapeDef default_shape_def();
+
+}  // namespace tandem

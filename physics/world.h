@@ -1,0 +1,138 @@
+// world.h — the World record, the world registry and the step stages
+// (internal).
+//
+// A World owns every record of its simulation in arrays indexed by id index
+// (bodies, body sims, shapes, shape geometry), the id pools that hand out
+// those indices, and the per-step arena. The process-wide registry maps a
+// WorldId's slot to its World; slots are taken lowest-first, and each slot's
+// generation is bumped when its world is destroyed.
+//
+// The step is a fixed list of stages (world.cpp, world_step), each a function
+// of (World*, StepContext*). Contact stages are empty until the contact task
+// fills them; their place in the order is fixed now:
+//
+//   update_contacts            broad-phase pairs → contacts → manifolds (contact task)
+//   prepare_bodies             gather simulated bodies into solver arrays (arena)
+//   prepare_contacts           contact constraints from manifolds (contact task)
+//   for each sub-step (h = dt / n):
+//     integrate_velocities     v ← v/(1 + h·c) + h·(s·g + F/m); ω likewise; clamp speeds
+//     warm_start               apply last step's impulses (contact task)
+//     solve                    soft contact constraints with bias (contact task)
+//     integrate_positions      c ← c + h·v; q ← integrate_rotation(q, h·ω)
+//     relax                    constraints without bias (contact task)
+//   restitution                (contact task)
+//   store_impulses             for warm starting (contact task)
+//   finalize_bodies            write back, clear forces, leave-bounds check, shape AABBs
+//
+// The issue lists "integrate velocities → update contacts → solve → ...": with
+// sub-steps, velocity integration happens inside the sub-step loop, so
+// contacts are updated once, before it, from the poses at the start of the
+// step (as Box2D v3's b2Collide precedes b2Solve).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "physics/arena.h"
+#include "physics/body.h"
+#include "physics/defs.h"
+#include "physics/id_pool.h"
+#include "physics/ids.h"
+#include "physics/shape.h"
+#include "physics/tandem.h"
+
+namespace tandem {
+
+/// What one step computes and shares between stages. Arrays come from the
+/// world's arena and live until finalize_bodies.
+struct StepContext {
+  Q32 dt;                          ///< the step, s
+  Q32 h;                           ///< the sub-step dt / n, s, rounded to nearest
+  int32_t sub_step_count = 0;      ///< n
+  Q32 max_linear_speed;            ///< m/s
+  Q32 max_angular_speed;           ///< rad/s: min(k_max_angular_speed, k_max_rotation_per_sub_step / h)
+  int32_t solver_body_count = 0;
+  int32_t* solver_to_body = nullptr;   ///< body index of each solver body, ascending
+  int32_t* body_to_solver = nullptr;   ///< solver index of each body index, or k_null_index
+  BodyState* states = nullptr;         ///< per solver index
+  SolverBodyParams* params = nullptr;  ///< per solver index
+  uint32_t flags = 0;                  ///< k_step_flag_* raised so far
+};
+
+/// A simulation world.
+struct World {
+  WorldId id;                        ///< this world's handle
+  WorldDef def;                      ///< current settings (cookie set)
+
+  IdPool body_pool;
+  std::vector<Body> bodies;          ///< by body index (dead slots keep stale data)
+  std::vector<BodySim> body_sims;    ///< by body index
+
+  IdPool shape_pool;
+  std::vector<Shape> shapes;                    ///< by shape index
+  std::vector<ShapeGeometry> shape_geometries;  ///< by shape index
+
+  Arena arena;                       ///< per-step scratch
+  StepContext context;               ///< the current / last step
+  uint64_t step_count = 0;           ///< accepted non-empty steps
+  int32_t last_solver_body_count = 0;
+  bool locked = false;               ///< true inside world_step(); changes are refused
+};
+
+/// The live world of a handle, or null.
+World* find_world(WorldId id);
+
+/// Resolves a world handle for `function` (named in messages); `mutating`
+/// also refuses a locked world.
+Status resolve_world(WorldId id, const char* function, bool mutating, World** out_world);
+
+/// Resolves an object handle's parts against one of the world's pools (the
+/// shared path of resolve_body / resolve_shape). Refuses, in this order: a
+/// null handle, a world other than expected_world (when not null), a world
+/// that is gone, an index never allocated, a destroyed or otherwise dead
+/// generation, and (when mutating) a locked world. `kind` ("body") and `what`
+/// (the described handle) make the message.
+Status resolve_handle(const char* function, const char* kind, const std::string& what, uint32_t index1,
+                      uint32_t generation, WorldId world_id, WorldId expected_world, bool mutating,
+                      IdPool World::*pool, World** out_world, int32_t* out_index);
+
+/// The quiet version of resolve_handle for getters: true and the world and
+/// index when the handle names a live object.
+bool find_handle(uint32_t index1, uint32_t generation, WorldId world_id, IdPool World::*pool, World** out_world,
+                 int32_t* out_index);
+
+/// A Status with a code and message.
+Status make_status(StatusCode code, std::string message);
+
+// ---------------------------------------------------------------------------
+// Step stages (solver.cpp)
+// ---------------------------------------------------------------------------
+
+/// Contacts from broad-phase pairs and narrow phase. Empty until the contact
+/// task.
+void stage_update_contacts(World* world, StepContext* context);
+/// Gathers simulated bodies (non-static, enabled, awake; ascending body index)
+/// into the arena's solver arrays and computes their per-step constants.
+void stage_prepare_bodies(World* world, StepContext* context);
+/// Contact constraints from manifolds. Empty until the contact task.
+void stage_prepare_contacts(World* world, StepContext* context);
+/// One sub-step of velocity integration with damping and speed clamps.
+void stage_integrate_velocities(World* world, StepContext* context);
+/// Warm starting. Empty until the contact task.
+void stage_warm_start(World* world, StepContext* context);
+/// Constraint solve with bias. Empty until the contact task.
+void stage_solve(World* world, StepContext* context);
+/// One sub-step of position integration.
+void stage_integrate_positions(World* world, StepContext* context);
+/// Constraint relax without bias. Empty until the contact task.
+void stage_relax(World* world, StepContext* context);
+/// Restitution. Empty until the contact task.
+void stage_restitution(World* world, StepContext* context);
+/// Stores impulses for warm starting. Empty until the contact task.
+void stage_store_impulses(World* world, StepContext* context);
+/// Writes solver state back to the body sims, clears forces, disables bodies
+/// that left the world bounds, updates shape bounds, and frees the arena
+/// arrays.
+void stage_finalize_bodies(World* world, StepContext* context);
+
+}  // namespace tandem

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# setup-deps.sh — installs the Debian 12 packages Tandem needs, and only the
+# missing ones. A fresh machine is assumed to have build-essential, cmake,
+# clang and git; everything else comes from here.
+#
+# Usage: scripts/setup-deps.sh [all|demo]
+#   all  (default) everything scripts/test.sh needs: the libraries, Catch2,
+#        the i686 and s390x cross compilers, qemu-user, pkg-config
+#   demo only what building and running `tandem demo` needs
+#
+# Checks each package with dpkg-query; runs `apt-get update` and one
+# non-interactive `apt-get install` only when something is missing. Works as
+# root, or through sudo when not root. Exit status non-zero if an install fails.
+set -euo pipefail
+
+group=${1:-all}
+
+# Toolchain basics (on a fresh machine already; checked so a bare one also works).
+base=(build-essential cmake clang git ninja-build pkg-config)
+# Libraries the library, the command line and its demo use.
+libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
+# Only for scripts/test.sh: cross builds and tools/bench.
+extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev)
+
+case "$group" in
+  all) wanted=("${base[@]}" "${libs[@]}" "${extra[@]}") ;;
+  demo) wanted=("${base[@]}" "${libs[@]}") ;;
+  *) echo "usage: $0 [all|demo]" >&2; exit 2 ;;
+esac
+
+missing=()
+for pkg in "${wanted[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$pkg")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup-deps: all ${#wanted[@]} packages present ($group)"
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  as_root=()
+elif command -v sudo >/dev/null 2>&1; then
+  as_root=(sudo -n)
+  sudo -n true 2>/dev/null || as_root=(sudo)  # may ask for a password on a terminal
+else
+  echo "setup-deps: missing ${missing[*]}, and not root with no sudo; install them as root:" >&2
+  echo "  apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+
+echo "setup-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+  -o Dpkg::Options::=--force-confdef -o Dpkg::Options::=--force-confold "${missing[@]}"
+echo "setup-deps: done"

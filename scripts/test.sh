@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# test.sh — everything CI checks: installs missing packages, then configures,
+# builds and runs ctest in each build below (presets from CMakePresets.json,
+# build directories build/<preset>):
+#
+#   gcc-release      g++ 12, -O3; full accuracy samples; + install/consumer test
+#   clang-release    clang 14, -O3
+#   gcc-sanitize     g++, ASan + UBSan, no recovery, fault checks on
+#   clang-sanitize   clang, ASan + UBSan, no recovery, fault checks on
+#   portable-int128  g++ release on wide.h's portable 128-bit path
+#   i686             32-bit x86, no __int128, static; fixed/ tests only
+#   s390x            big-endian, under qemu-user; fixed/ tests only
+#
+# Usage: scripts/test.sh [--clean] [BUILD...]   (default: all builds above)
+#   --clean  delete each build directory first
+# Prints the time of every stage, a per-build summary, and as its very last
+# line "N passed, N failed": ctest tests summed over all builds, where a build
+# whose configure or compile fails counts as one failed test (so a broken
+# build never reads as "0 failed"). Exit status 0 only if everything passed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x)
+clean=0
+builds=()
+for arg in "$@"; do
+  case "$arg" in
+    --clean) clean=1 ;;
+    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
+    *) builds+=("$arg") ;;
+  esac
+done
+[ ${#builds[@]} -gt 0 ] || builds=("${all_builds[@]}")
+
+jobs=2
+t_start=$(date +%s)
+now() { date +%s; }
+clock() { date +%H:%M:%S; }
+banner() { printf '\n==== %s  [%s, %d s elapsed]\n' "$1" "$(clock)" "$(( $(now) - t_start ))"; }
+
+# Sanitizer reports: stack traces, stop at the first error.
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=0:detect_leaks=1}
+
+banner "setup: scripts/setup-deps.sh"
+t0=$(now)
+if ! bash scripts/setup-deps.sh all; then
+  echo "test.sh: installing dependencies failed"
+  echo "0 passed, 1 failed"
+  exit 1
+fi
+t_setup=$(( $(now) - t0 ))
+echo "---- setup: ${t_setup} s"
+
+total_passed=0
+total_failed=0
+summary=()
+
+# run_build NAME: configure, build and test one preset; appends to summary.
+run_build() {
+  local name=$1 dir=build/$1 result=ok passed=0 failed=0
+  local t_cfg=0 t_bld=0 t_tst=0 t0 b0 log
+  local build_args=() ctest_args=()
+  case "$name" in
+    # Cross builds check the fixed-point core only (the physics tests would
+    # take too long under emulation).
+    i686|s390x)
+      build_args=(--target tandem_tests_fixed)
+      ctest_args=(-R '^fixed/') ;;
+    gcc-release) ;;  # the one build that also runs the determinism lint
+    *) ctest_args=(-E '^determinism lint') ;;
+  esac
+
+  banner "$name"
+  b0=$(now)
+  if [ $clean -eq 1 ]; then rm -rf "$dir"; fi
+  # A build directory made by another generator cannot be reused.
+  if [ -f "$dir/CMakeCache.txt" ] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+    echo "test.sh: $dir was configured with another generator; starting it afresh"
+    rm -rf "$dir"
+  fi
+
+  t0=$(now)
+  echo "---- $name: configure (cmake --preset $name)"
+  if ! cmake --preset "$name"; then
+    result="configure FAILED"
+  fi
+  t_cfg=$(( $(now) - t0 ))
+  echo "---- $name: configure: ${t_cfg} s"
+
+  if [ "$result" = ok ]; then
+    t0=$(now)
+    echo "---- $name: build (-j$jobs)"
+    if ! cmake --build "$dir" -j "$jobs" "${build_args[@]}"; then
+      result="build FAILED"
+    fi
+    t_bld=$(( $(now) - t0 ))
+    echo "---- $name: build: ${t_bld} s"
+  fi
+
+  if [ "$result" = ok ]; then
+    t0=$(now)
+    log=$dir/ctest-output.txt
+    echo "---- $name: ctest"
+    ctest --test-dir "$dir" -j "$jobs" --output-on-failure --no-tests=error "${ctest_args[@]}" 2>&1 | tee "$log"
+    local rc=${PIPESTATUS[0]}
+    t_tst=$(( $(now) - t0 ))
+    echo "---- $name: ctest: ${t_tst} s"
+    # "100% tests passed, 0 tests failed out of 21"
+    local line
+    line=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -1)
+    if [ -n "$line" ]; then
+      local total
+      failed=$(sed -E 's/.* ([0-9]+) tests? failed out of.*/\1/' <<<"$line")
+      total=$(sed -E 's/.* out of ([0-9]+).*/\1/' <<<"$line")
+      passed=$(( total - failed ))
+      if [ "$rc" -ne 0 ] && [ "$failed" -eq 0 ]; then failed=1; fi
+      [ "$failed" -eq 0 ] || result="tests FAILED"
+    else
+      failed=1
+      result="ctest FAILED (exit $rc)"
+    fi
+  else
+    failed=1
+  fi
+
+  local t_all=$(( $(now) - b0 ))
+  total_passed=$(( total_passed + passed ))
+  total_failed=$(( total_failed + failed ))
+  summary+=("$(printf '%-16s %-22s %6d %6d %9d %7d %6d %7d' "$name" "$result" "$passed" "$failed" \
+    "$t_cfg" "$t_bld" "$t_tst" "$t_all")")
+  echo "---- $name: $result, $passed passed, $failed failed, ${t_all} s"
+}
+
+for b in "${builds[@]}"; do
+  case " ${all_builds[*]} " in
+    *" $b "*) run_build "$b" ;;
+    *) echo "test.sh: unknown build $b (builds: ${all_builds[*]})"
+       summary+=("$(printf '%-16s %-22s' "$b" "unknown build")")
+       total_failed=$(( total_failed + 1 )) ;;
+  esac
+done
+
+t_total=$(( $(now) - t_start ))
+echo
+echo "==== summary (seconds; setup ${t_setup} s, total ${t_total} s on $(nproc) cores)"
+printf '%-16s %-22s %6s %6s %9s %7s %6s %7s\n' build result passed failed configure build test total
+for line in "${summary[@]}"; do echo "$line"; done
+echo
+echo "${total_passed} passed, ${total_failed} failed"
+[ "$total_failed" -eq 0 ]
