@@ -22,14 +22,17 @@
 //      only — no division;
 //   4. s0 = x·y ≈ √x; for 128-bit inputs one more Newton step for √n that
 //      uses the full 128-bit residual, s = s0 + (n − s0²)·y/2 (≈ 64 bits);
-//   5. an exact fix-up that compares r² with n, so the result is exact no
-//      matter how the estimate rounded (the estimate is within ±2).
+//   5. an exact fix-up on the remainder n − r²: loops that make the result
+//      exact whatever the estimate was; the estimate is within ±2 and almost
+//      always right, so they sit behind [[unlikely]] tests.
 // Rejected: Newton with a 128/64 division per step (2–3 divisions, each
 // slower than the whole multiply chain, and a long software division on
 // the portable path); a bigger table (fewer steps but > a few KB).
 // isqrt_round uses floor plus the remainder: round(√n) = f + (n − f² > f).
-// rsqrt runs a third Newton step (≈ 59 bits) and then fixes the last bit
-// exactly, so it is in fact correctly rounded.
+// rsqrt: the same estimate (plus a third Newton step, ≈ 59 bits, for
+// Q32.32) lands within 2^-10 of a unit of 2^48/√raw (2^24/√raw); one exact
+// integer product on the side it was rounded to fixes the last bit, so it is
+// correctly rounded.
 //
 // sin/cos. The angle a·2^-32 rad is multiplied by 2/π held to 94 fraction
 // bits (K = round(2/π·2^94)); bits 62..125 of a·K are the angle in quarter
@@ -38,7 +41,7 @@
 // precision, with two multiplications. Rounding to the nearest quarter turn
 // gives the quadrant and f ∈ [−½, ½] (|angle| ≤ π/4); sin(π/2·f) and
 // cos(π/2·f) are odd/even polynomials in f of degree 11 and 10 evaluated by
-// Horner in Q2.62 (approximation error ≤ 2^-44, evaluation error ≤ 2^-59);
+// Horner in Q2.62 (approximation error < 2^-43, evaluation error < 2^-58);
 // the quadrant swaps/negates them without branches. Symmetry is exact:
 // sin(−x) = −sin(x), cos(−x) = cos(x) (the core works on |a|).
 //
@@ -57,8 +60,8 @@
 // part — and then rounded to nearest in Q2.62.
 //
 // Rounding of results: sqrt and rsqrt are correctly rounded (no ties exist).
-// sin, cos, atan2 round their Q2.62 value to nearest (a tie, which the
-// irrational values never produce exactly, would round up in magnitude).
+// sin, cos and atan2 round their Q2.62 value once to nearest, ties upwards
+// (the Q2.62 value itself is within 2^-42 of the truth).
 #include "fixed/fixed_math.h"
 
 #include <array>
@@ -126,7 +129,7 @@ constexpr uint64_t rsqrt_step(uint64_t x, uint64_t y) {
 /// 1/√X as Q2.62 for x = X·2^64 ∈ [2^62, 2^64), relative error below 2^-33
 /// (from the table and two Newton steps; the result is almost always low).
 constexpr uint64_t rsqrt_estimate(uint64_t x) {
-  const uint64_t y0 = k_rsqrt_table[(x >> 55) - 128];  // Q1.15
+  const uint64_t y0 = k_rsqrt_table[static_cast<size_t>((x >> 55) - 128)];  // Q1.15
   // First step in 32-bit words: Q1.15 → Q1.31.
   const uint64_t t = ((x >> 32) * (y0 * y0)) >> 32;                 // X·y0², Q2.30
   const uint64_t y1 = (y0 * ((uint64_t{3} << 30) - t)) >> 15;      // y0·(3 − X·y0²)/2, Q1.31
@@ -146,12 +149,22 @@ constexpr uint64_t isqrt64_rem(uint64_t n, uint64_t* out_rem) {
   const uint64_t s = mulhi_u64(x, rsqrt_estimate(x));  // √X as Q2.62
   uint64_t r = s >> (30 + sh / 2);                     // ≈ √n, within ±1
   if (r > 0xFFFFFFFFu) r = 0xFFFFFFFFu;
-  // Exact fix-up: find r with r² ≤ n < (r + 1)².
-  while (r * r > n) --r;
-  uint64_t rem = n - r * r;
-  while (rem > 2 * r) {  // (r + 1)² ≤ n
-    rem -= 2 * r + 1;
-    ++r;
+  // Exact fix-up: find r with r² ≤ n < (r + 1)². The loops are written
+  // behind [[unlikely]] tests so that the common case (no correction) is
+  // straight-line code for both g++ and clang.
+  uint64_t sq = r * r;
+  if (sq > n) [[unlikely]] {
+    do {
+      --r;
+      sq = r * r;
+    } while (sq > n);
+  }
+  uint64_t rem = n - sq;
+  if (rem > 2 * r) [[unlikely]] {  // (r + 1)² ≤ n
+    do {
+      rem -= 2 * r + 1;
+      ++r;
+    } while (rem > 2 * r);
   }
   *out_rem = rem;
   return r;
@@ -179,15 +192,12 @@ constexpr uint64_t isqrt128_rem(wide::U128 n, wide::U128* out_rem) {
   const wide::U128 d = wide::sub(m, wide::mul_u64(s0, s0));  // signed, |d| < 2^98
   const int64_t dd = static_cast<int64_t>((d.hi << 24) | (d.lo >> 40));
   const int64_t delta = static_cast<int64_t>(wide::mul_s64(dd, static_cast<int64_t>(y)).hi) >> 23;
-  uint64_t s;
-  if (delta >= 0) {
-    const uint64_t up = static_cast<uint64_t>(delta);
-    s = s0 > ~uint64_t{0} - up ? ~uint64_t{0} : s0 + up;
-  } else {
-    s = s0 - (0u - static_cast<uint64_t>(delta));  // s0 ≥ 2^63 ≫ |delta|
-  }
+  // s = s0 + delta, saturated at 2^64 − 1 (s0 ≥ 2^63 ≫ |delta|, so only a
+  // positive delta can wrap). Branch-free: delta's sign is unpredictable.
+  const uint64_t s_wrapped = s0 + static_cast<uint64_t>(delta);
+  const uint64_t wrapped = static_cast<uint64_t>(delta > 0) & static_cast<uint64_t>(s_wrapped < s0);
+  const uint64_t s = s_wrapped | (0u - wrapped);
   uint64_t r = s >> (sh / 2);  // ≈ √n, within ±2
-  // Exact fix-up against n: r² ≤ n < (r + 1)².
   wide::U128 sq = wide::mul_u64(r, r);
   while (wide::less_u(n, sq)) {
     --r;
@@ -195,7 +205,7 @@ constexpr uint64_t isqrt128_rem(wide::U128 n, wide::U128* out_rem) {
   }
   wide::U128 rem = wide::sub(n, sq);
   for (;;) {
-    const wide::U128 step{2 * r + 1, r >> 63};  // (r + 1)² − r², may exceed 2^64
+    const wide::U128 step{2 * r + 1, r >> 63};
     if (wide::less_u(rem, step)) break;
     rem = wide::sub(rem, step);
     ++r;
@@ -210,10 +220,10 @@ constexpr uint64_t isqrt128_rem(wide::U128 n, wide::U128* out_rem) {
 constexpr uint64_t k_two_over_pi_hi = 683565275u;              // 0x28BE60DB
 constexpr uint64_t k_two_over_pi_lo = 10633286012715521524u;   // 0x9391054A7F09D5F4
 
-// sin(π/2·f) ≈ f·Σ k_sin[i]·f^(2i), f ∈ [−½, ½]; Q2.62; |error| ≤ 2^-49.
+// sin(π/2·f) ≈ f·Σ k_sin[i]·f^(2i), f ∈ [−½, ½]; Q2.62; |error| < 2^-48.
 constexpr std::array<int64_t, 6> k_sin = {7244019458076921496, -2978983596853064559, 367517369509091705,
                                           -21590770178367351,  739838241900101,      -16384710018584};
-// cos(π/2·f) ≈ Σ k_cos[i]·f^(2i), f ∈ [−½, ½]; Q2.62; |error| ≤ 2^-44.
+// cos(π/2·f) ≈ Σ k_cos[i]·f^(2i), f ∈ [−½, ½]; Q2.62; |error| < 2^-43.
 constexpr std::array<int64_t, 6> k_cos = {4611686018427131759, -5689439577915358675, 1169844119443494867,
                                           -96215763697429770,  4238885402159624,     -114604954135358};
 
@@ -254,7 +264,7 @@ constexpr int64_t round_q62(int64_t v, unsigned s) { return (v + (int64_t{1} << 
 // --- arctangent ----------------------------------------------------------------
 
 // atan(c + u/64) ≈ Σ k_atan[k][i]·u^i for u ∈ [−1, 1], c = (2k+1)/64 the
-// centre of segment k of [0, 1]; Q2.62; |error| ≤ 2^-43.
+// centre of segment k of [0, 1]; Q2.62; |error| < 2^-43.
 constexpr int64_t k_atan[32][6] = {
     {72051730834724142, 72040006145786230, -17583598666270, -5855477190569, 4288159160, 855591021},
     {216014660847652148, 71899611493127810, -52545390344924, -5787175417963, 12739589482, 830724086},
@@ -298,10 +308,10 @@ constexpr uint64_t atan_unit_q62(uint64_t r) {
   uint64_t k = r >> 58;
   if (k > 31) k = 31;  // r = 1 exactly: the right end of the last segment
   const int64_t u = static_cast<int64_t>(r - ((2 * k + 1) << 57)) * 32;  // [−1, 1], Q2.62
-  const int64_t* a = k_atan[k];
+  const int64_t* a = k_atan[static_cast<size_t>(k)];
   int64_t p = a[5];
   for (int i = 4; i >= 0; --i) p = a[i] + mul_q62(u, p);
-  return static_cast<uint64_t>(p);  // ≥ 0: atan(0) is 0 up to 2^-43
+  return p < 0 ? 0u : static_cast<uint64_t>(p);  // p(0) is 0 up to 2^-43 (in fact +30350·2^-62)
 }
 
 /// atan2 of magnitudes folded back to the full circle: θ in Q2.62 ∈ [0, π]
@@ -324,9 +334,10 @@ uint64_t isqrt_floor(wide::U128 n) {
 uint64_t isqrt_round(wide::U128 n) {
   wide::U128 rem;
   const uint64_t f = isqrt128_rem(n, &rem);
-  // √n ≥ f + ½ ⇔ n ≥ f² + f + ¼ ⇔ rem > f (integers).
-  if (wide::less_u(wide::U128{f, 0}, rem)) return f == ~uint64_t{0} ? f : f + 1;
-  return f;
+  // √n ≥ f + ½ ⇔ n ≥ f² + f + ¼ ⇔ rem > f (integers); rem ≤ 2f, so the
+  // sign of f − rem decides (branch-free: the outcome is a coin toss).
+  const bool up = wide::is_negative(wide::sub(wide::U128{f, 0}, rem));
+  return f + ((up && f != ~uint64_t{0}) ? 1u : 0u);
 }
 
 Q32 sqrt(Q32 x) {
@@ -364,19 +375,17 @@ Q32 rsqrt(Q32 x) {
   const unsigned shift = 46 - sh / 2;
   uint64_t r = (y + (uint64_t{1} << (shift - 1))) >> shift;
   // Exact last bit: r = round(√(2^96/raw)) ⇔ (2r − 1)²·raw < 2^98 < (2r + 1)²·raw
-  // (equality is impossible). The products are ≈ 2^98, so 128 bits hold them.
-  const auto odd_sq_times_raw = [raw](uint64_t odd) {
-    const wide::U128 sq = wide::mul_u64(odd, odd);  // odd < 2^50
-    wide::U128 p = wide::mul_u64(sq.lo, raw);
-    p.hi += sq.hi * raw;
-    return p;
-  };
-  const wide::U128 k_limit{0, uint64_t{1} << 34};  // 2^98
-  if (!wide::less_u(k_limit, odd_sq_times_raw(2 * r + 1))) {
-    ++r;
-  } else if (!wide::less_u(odd_sq_times_raw(2 * r - 1), k_limit)) {
-    --r;
-  }
+  // (equality is impossible). y is within 2^-10 of a unit, so r can only be
+  // one too large when y was rounded up, one too small when rounded down:
+  // one product decides, chosen without a branch. It is ≈ 2^98, so 128 bits
+  // hold it.
+  const uint64_t rounded_up = (y >> (shift - 1)) & 1u;
+  const uint64_t odd = 2 * r + 1 - 2 * rounded_up;  // 2r − 1 or 2r + 1, < 2^50
+  const wide::U128 sq = wide::mul_u64(odd, odd);
+  wide::U128 p = wide::mul_u64(sq.lo, raw);
+  p.hi += sq.hi * raw;
+  const uint64_t above = wide::less_u(wide::U128{0, uint64_t{1} << 34}, p) ? 1u : 0u;  // p > 2^98
+  r = r - (rounded_up & above) + ((rounded_up ^ 1u) & (above ^ 1u));
   return Q32::from_raw(static_cast<int64_t>(r));
 }
 
@@ -393,14 +402,12 @@ Q16 rsqrt(Q16 x) {
   // 2^24/√raw = Y·2^(sh/2 − 8) with Y = y·2^-62.
   const unsigned shift = 70 - sh / 2;
   uint64_t r = (y + (uint64_t{1} << (shift - 1))) >> shift;
-  // Exact last bit: (2r − 1)²·raw < 2^50 < (2r + 1)²·raw.
-  const auto odd_sq_times_raw = [raw](uint64_t odd) { return wide::mul_u64(odd * odd, raw); };  // odd < 2^26
-  const wide::U128 k_limit{uint64_t{1} << 50, 0};
-  if (!wide::less_u(k_limit, odd_sq_times_raw(2 * r + 1))) {
-    ++r;
-  } else if (!wide::less_u(odd_sq_times_raw(2 * r - 1), k_limit)) {
-    --r;
-  }
+  // Exact last bit, as for Q32.32: (2r − 1)²·raw < 2^50 < (2r + 1)²·raw, one
+  // product ≈ 2^50 (fits 64 bits) checked on the side y was rounded to.
+  const uint64_t rounded_up = (y >> (shift - 1)) & 1u;
+  const uint64_t odd = 2 * r + 1 - 2 * rounded_up;  // < 2^26
+  const uint64_t above = odd * odd * raw > (uint64_t{1} << 50) ? 1u : 0u;
+  r = r - (rounded_up & above) + ((rounded_up ^ 1u) & (above ^ 1u));
   return Q16::from_raw(static_cast<int32_t>(r));
 }
 
@@ -446,7 +453,49 @@ Q16 atan2(Q16 y, Q16 x) {
 
 }  // namespace tandem
 
-/* Generator for the constants above (python3; exact rational arithmetic):
+/* Generator for the constants above: python3, exact rational arithmetic
+   (fractions.Fraction, big integers; no floating point). Prints k_sin, k_cos
+   and the k_atan rows, each with a bound on the economisation error, then
+   round(π·2^62), round(π/2·2^62) and round(2/π·2^94).
 
-GENERATOR_PLACEHOLDER
+from fractions import Fraction as F
+from math import comb, factorial
+P = 400                                      # bits of working precision
+def atan_inv(n):                             # atan(1/n)·2^P, alternating series
+    s, t, k, sg = 0, (1 << P) // n, 1, 1
+    while t: s += sg * (t // k); t //= n * n; k += 2; sg = -sg
+    return s
+PI = F(16 * atan_inv(5) - 4 * atan_inv(239), 1 << P)          # Machin
+def rnd(x): return (2 * x.numerator + x.denominator) // (2 * x.denominator)  # nearest, ties up
+def economize(mono, deg):                    # Taylor coeffs in w on [-1,1] -> degree deg
+    N = len(mono) - 1; ch = [F(0)] * (N + 1)
+    for n, a in enumerate(mono):             # w^n = 2^(1-n)·Σ C(n,k)·T_{n-2k} (T_0 halved)
+        for k in range(n // 2 + 1):
+            c = F(comb(n, k), 1 << (n - 1)) if n else F(1)
+            ch[n - 2 * k] += a * (c / 2 if n and n == 2 * k else c)
+    T = [[F(1)], [F(0), F(1)]]
+    while len(T) <= deg:                     # T_{m+1} = 2w·T_m − T_{m−1}
+        nxt = [F(0)] + [2 * x for x in T[-1]]
+        for i, x in enumerate(T[-2]): nxt[i] -= x
+        T.append(nxt)
+    out = [sum((ch[m] * T[m][i] for m in range(i, deg + 1) if i < len(T[m])), F(0)) for i in range(deg + 1)]
+    return out, sum(abs(c) for c in ch[deg + 1:])  # coefficients, bound on the dropped part
+N = 33                                       # Taylor degree before economisation (tail < 2^-90)
+Q = lambda x: rnd(x * (1 << 62))             # Q2.62
+for name, par, deg in (("k_sin", 1, 11), ("k_cos", 0, 10)):   # f ∈ [-1/2, 1/2], w = 2f
+    mono = [(-1) ** (n // 2) * (PI / 4) ** n / factorial(n) if n % 2 == par else F(0) for n in range(N + 1)]
+    c, err = economize(mono, deg)
+    print(name, [Q(c[n] * 2 ** n) for n in range(par, deg + 1, 2)], 'error < 2^-%d' % (err.denominator.bit_length() - err.numerator.bit_length() - 1))
+def atan(x):                                 # Euler: Σ 2^2n (n!)^2/(2n+1)! · x^(2n+1)/(1+x²)^(n+1)
+    y, t, s, n = x * x / (1 + x * x), x / (1 + x * x), F(0), 0
+    while t > F(1, 1 << P): s += t; n += 1; t = t * y * 2 * n / (2 * n + 1)
+    return s
+for k in range(32):                          # atan(c + u/64), u ∈ [-1, 1], c = (2k+1)/64
+    c = F(2 * k + 1, 64); inv = []           # series of 1/(1+(c+t)^2) = atan'(c+t)
+    for n in range(N):
+        inv.append(((1 if n == 0 else 0) - 2 * c * (inv[n - 1] if n else 0) - (inv[n - 2] if n > 1 else 0)) / (1 + c * c))
+    mono = [atan(c)] + [inv[n - 1] / n / F(64) ** n for n in range(1, N)]
+    cc, err = economize(mono, 5)
+    print([Q(x) for x in cc], 'error < 2^-%d' % (err.denominator.bit_length() - err.numerator.bit_length() - 1))
+print("pi", Q(PI), "pi/2", Q(PI / 2), "2/pi*2^94", rnd(2 / PI * (1 << 94)))
 */

@@ -217,10 +217,11 @@ constexpr Rot rot_normalize_fast(Rot q) {
 /// q advanced by a small angle δ (radians; the step's ω·h): the first-order
 /// update (c − δ·s, s + δ·c), which turns q by atan(δ) = δ − δ³/3 + … and
 /// scales it by √(1 + δ²), followed by two rot_normalize_fast steps. The
-/// length error left is about 0.42·δ⁸ (negligible below |δ| ≈ 0.05, about
-/// 9 raw units at 0.1) plus rounding, and it does not accumulate: repeated
-/// calls keep |q| within 2 raw units of 1 for |δ| ≤ 0.05 (asserted over 1M
-/// steps by the tests). Use rot_normalize for pairs far from unit length.
+/// squared-length error left is about 0.42·δ⁸ (negligible below |δ| ≈ 0.05;
+/// 9 raw units of |q| at 0.1) plus rounding, and it does not accumulate:
+/// repeated calls keep |q| within 2 raw units of 1 for |δ| ≤ 0.05 (asserted
+/// over 1M steps by the tests). Use rot_normalize for pairs far from unit
+/// length.
 constexpr Rot integrate_rotation(Rot q, Q32 delta_angle) {
   const Rot r{q.c - delta_angle * q.s, q.s + delta_angle * q.c};
   return rot_normalize_fast(rot_normalize_fast(r));

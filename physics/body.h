@@ -26,7 +26,7 @@
 // a wide (SoA) solver can transpose BodyState by solver index.
 //
 // Sizes on x86-64 (asserted as upper bounds below, printed by
-// tests/physics/test_body.cpp): Body 72 bytes, BodySim 152, BodyState 56,
+// tests/physics/test_body.cpp): Body 56 bytes, BodySim 152, BodyState 56,
 // SolverBodyParams 56.
 #pragma once
 
@@ -99,7 +99,7 @@ struct SolverBodyParams {
   Q32 inv_inertia;              ///< 1/(kg·m²)
 };
 
-static_assert(sizeof(Body) <= 80);
+static_assert(sizeof(Body) <= 64);
 static_assert(sizeof(BodySim) <= 160);
 static_assert(sizeof(BodyState) <= 56);
 static_assert(sizeof(SolverBodyParams) <= 56);

@@ -335,6 +335,7 @@ struct ToiInput {
 struct ToiOutput {
   ToiState state = ToiState::unknown;
   Q32 fraction;  ///< in [0, max_fraction]
+  int32_t iterations = 0;  ///< conservative-advancement steps taken (GJK calls)
 };
 
 /// Time of impact of two moving (translating and rotating) convex shapes:

@@ -74,7 +74,8 @@ struct BodyDef {
   Q32 gravity_scale;                      ///< dimensionless; default 1; |s| ≤ k_max_gravity_scale
   uint64_t user_data = 0;                 ///< any integer, for the application; default 0
   bool enable_sleep = true;               ///< may this body sleep; default true
-  bool is_awake = true;                   ///< start awake; default true
+  bool is_awake = true;                   ///< start awake (a body created asleep starts at rest: its
+                                          ///< velocity is ignored); default true
   bool fixed_rotation = false;            ///< never rotate (infinite rotational inertia); default false
   bool is_bullet = false;                 ///< continuous collision against dynamic bodies (later task);
                                           ///< default false

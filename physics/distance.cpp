@@ -351,6 +351,11 @@ DistanceOutput shape_distance(const DistanceInput& input) {
 
 CastOutput shape_cast(const ShapeCastInput& input) {
   CastOutput out;
+  const auto miss = [&out] {
+    CastOutput m;
+    m.iterations = out.iterations;
+    return m;
+  };
   const Q32 max_fraction = clamp(input.max_fraction, Q32::zero(), Q32::one());
   const Q32 total_radius = input.proxy_a.radius + input.proxy_b.radius;
   Q32 target = max(k_linear_slop, total_radius - k_linear_slop);
@@ -382,13 +387,13 @@ CastOutput shape_cast(const ShapeCastInput& input) {
     }
     // B approaches A along −normal at `closing` m per unit fraction.
     const Q32 closing = -dot(delta, d.normal);
-    if (closing <= Q32::zero()) return CastOutput{Vec2{}, Vec2{}, Q32{}, out.iterations, false};
+    if (closing <= Q32::zero()) return miss();  // moving apart
     const Q32 gap = d.distance - target;
-    if (gap >= (max_fraction - fraction) * closing) return CastOutput{Vec2{}, Vec2{}, Q32{}, out.iterations, false};
+    if (gap >= (max_fraction - fraction) * closing) return miss();  // not before max_fraction
     fraction += gap / closing;
     din.transform_b.p = mul_add(input.transform_b.p, fraction, delta);
   }
-  return CastOutput{Vec2{}, Vec2{}, Q32{}, out.iterations, false};  // did not converge
+  return miss();  // did not converge
 }
 
 // ---------------------------------------------------------------------------
@@ -420,6 +425,7 @@ ToiOutput time_of_impact(const ToiInput& input) {
   din.use_radii = false;
   Q32 t;
   for (int32_t iteration = 0; iteration < k_max_toi_iterations; ++iteration) {
+    out.iterations = iteration + 1;
     din.transform_a = sweep_transform(sa, t);
     din.transform_b = sweep_transform(sb, t);
     const DistanceOutput d = shape_distance(din);

@@ -33,6 +33,10 @@
 //        reference face (A preferred within the flip tolerance) and the
 //        incident edge is chosen among the two edges at that vertex, so the
 //        closest vertex is always one of the clipped points.
+//   Clipping: an incident edge lying wholly outside the reference edge's
+//   side planes gives one point at its nearest end (cores that overlap must
+//   touch somewhere) — except against chain segments, where it gives nothing
+//   (that region belongs to the neighbouring segment).
 //   Box2D v3 uses the same SAT + clipping for polygons, but decides "disjoint"
 //   by SAT separation > 0.1 slop and then only looks at the reference and
 //   incident edges. The SAT value can be far below the true distance (two
@@ -72,6 +76,12 @@
 //   accurate unit directions and only the exactly zero vector needs a
 //   fallback normal, chosen by a fixed rule per pair.
 //
+// * Accuracy (tests/physics/test_manifold.cpp, 100,000 random pairs against
+//   an exact long double oracle and against GJK): for disjoint cores the
+//   smallest separation matches the exact one to ~1e-9 m, except where A's
+//   face is kept within the flip tolerance (then up to 5e-4 m larger, never
+//   smaller); shallow overlaps match the exact penetration depth likewise.
+//
 // * Symmetry. collide() swaps and flips pairs stored the other way round, so
 //   collide(A, B) is bit-for-bit flip(collide(B, A)) for pairs of different
 //   types. For two shapes of the same type the function itself runs with A
@@ -79,6 +89,7 @@
 //   choice of reference face within the flip tolerance.
 #include <algorithm>
 #include <array>
+#include <utility>
 
 #include "fixed/vec2.h"
 #include "fixed/wide.h"

@@ -296,9 +296,10 @@ Status body_set_angular_velocity(BodyId body, Q32 angular_velocity);
 Vec2 body_point_velocity(BodyId body, Vec2 world_point);
 
 /// Adds a force (N) at a world point (m) for the next step; also adds the
-/// torque (point − centre) × force. Only dynamic bodies take forces (others:
-/// ok, no effect). A sleeping body takes it only with wake = true (and wakes);
-/// otherwise the call does nothing. Refused when the accumulated force or
+/// torque (point − centre) × force; the point must be inside the world
+/// bounds. Only enabled dynamic bodies take forces (others: ok, no effect). A
+/// sleeping body takes it only with wake = true (and wakes); otherwise the
+/// call does nothing. Refused when the accumulated force or
 /// torque would exceed k_max_force / k_max_torque, or the acceleration
 /// k_max_linear_acceleration / k_max_angular_acceleration.
 Status body_apply_force(BodyId body, Vec2 force, Vec2 world_point, bool wake);
@@ -307,8 +308,9 @@ Status body_apply_force_to_center(BodyId body, Vec2 force, bool wake);
 /// Adds a torque (N·m) for the next step; as body_apply_force otherwise.
 Status body_apply_torque(BodyId body, Q32 torque, bool wake);
 /// Applies an impulse (N·s) at a world point (m) now: v += J/m (J × 1/m,
-/// rounded once per component), ω += (1/I)·((point − centre) × J). Dynamic
-/// bodies only (others: ok, no effect); sleeping bodies only with wake. Refused
+/// rounded once per component), ω += (1/I)·((point − centre) × J). Enabled
+/// dynamic bodies only (others: ok, no effect); sleeping bodies only with
+/// wake; the point must be inside the world bounds. Refused
 /// when the new speed would exceed the world's maximum or |ω| would exceed
 /// k_max_angular_speed.
 Status body_apply_linear_impulse(BodyId body, Vec2 impulse, Vec2 world_point, bool wake);

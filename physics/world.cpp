@@ -149,7 +149,16 @@ std::string describe(ShapeId id) {
   return "shape {index " + std::to_string(id.index1 - 1) + ", generation " + std::to_string(id.generation) + "}";
 }
 
-std::string format_vec2(Vec2 v) { return "(" + q32_text(v.x) + ", " + q32_text(v.y) + ")"; }
+std::string format_vec2(Vec2 v) {
+  // Appended piece by piece: g++ 12 -O3 warns (-Wrestrict, a false positive)
+  // on "(" + std::string.
+  std::string text = "(";
+  text += q32_text(v.x);
+  text += ", ";
+  text += q32_text(v.y);
+  text += ")";
+  return text;
+}
 
 // ---------------------------------------------------------------------------
 // Registry

@@ -44,7 +44,11 @@
 namespace tandem {
 
 /// What one step computes and shares between stages. Arrays come from the
-/// world's arena and live until finalize_bodies.
+/// world's arena and live until finalize_bodies, which frees them; a stage
+/// that allocates after prepare_bodies must free its arrays before finalize
+/// (the arena is a stack), and update_contacts must free before
+/// prepare_bodies or keep its arrays below the body arrays for the whole
+/// step.
 struct StepContext {
   Q32 dt;                          ///< the step, s
   Q32 h;                           ///< the sub-step dt / n, s, rounded to nearest

@@ -37,7 +37,7 @@ jobs=2
 t_start=$(date +%s)
 now() { date +%s; }
 clock() { date +%H:%M:%S; }
-banner() { printf '\n==== %s  [%s, %d s elapsed]\n' "$1" "$(clock)" "$(( $(now) - t_start ))"; }
+banner() { printf '\n[test.sh] ==== %s  (%s, %d s elapsed)\n' "$1" "$(clock)" "$(( $(now) - t_start ))"; }
 
 # Sanitizer reports: stack traces, stop at the first error.
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
@@ -51,7 +51,7 @@ if ! bash scripts/setup-deps.sh all; then
   exit 1
 fi
 t_setup=$(( $(now) - t0 ))
-echo "---- setup: ${t_setup} s"
+echo "[test.sh] setup: ${t_setup} s"
 
 total_passed=0
 total_failed=0
@@ -82,31 +82,31 @@ run_build() {
   fi
 
   t0=$(now)
-  echo "---- $name: configure (cmake --preset $name)"
+  echo "[test.sh] $name: configure (cmake --preset $name)"
   if ! cmake --preset "$name"; then
     result="configure FAILED"
   fi
   t_cfg=$(( $(now) - t0 ))
-  echo "---- $name: configure: ${t_cfg} s"
+  echo "[test.sh] $name: configure: ${t_cfg} s"
 
   if [ "$result" = ok ]; then
     t0=$(now)
-    echo "---- $name: build (-j$jobs)"
+    echo "[test.sh] $name: build (-j$jobs)"
     if ! cmake --build "$dir" -j "$jobs" "${build_args[@]}"; then
       result="build FAILED"
     fi
     t_bld=$(( $(now) - t0 ))
-    echo "---- $name: build: ${t_bld} s"
+    echo "[test.sh] $name: build: ${t_bld} s"
   fi
 
   if [ "$result" = ok ]; then
     t0=$(now)
     log=$dir/ctest-output.txt
-    echo "---- $name: ctest"
+    echo "[test.sh] $name: ctest"
     ctest --test-dir "$dir" -j "$jobs" --output-on-failure --no-tests=error "${ctest_args[@]}" 2>&1 | tee "$log"
     local rc=${PIPESTATUS[0]}
     t_tst=$(( $(now) - t0 ))
-    echo "---- $name: ctest: ${t_tst} s"
+    echo "[test.sh] $name: ctest: ${t_tst} s"
     # "100% tests passed, 0 tests failed out of 21"
     local line
     line=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -1)
@@ -130,7 +130,7 @@ run_build() {
   total_failed=$(( total_failed + failed ))
   summary+=("$(printf '%-16s %-22s %6d %6d %9d %7d %6d %7d' "$name" "$result" "$passed" "$failed" \
     "$t_cfg" "$t_bld" "$t_tst" "$t_all")")
-  echo "---- $name: $result, $passed passed, $failed failed, ${t_all} s"
+  echo "[test.sh] $name: $result, $passed passed, $failed failed, ${t_all} s"
 }
 
 for b in "${builds[@]}"; do
@@ -144,7 +144,7 @@ done
 
 t_total=$(( $(now) - t_start ))
 echo
-echo "==== summary (seconds; setup ${t_setup} s, total ${t_total} s on $(nproc) cores)"
+echo "[test.sh] summary (seconds; setup ${t_setup} s, total ${t_total} s on $(nproc) cores)"
 printf '%-16s %-22s %6s %6s %9s %7s %6s %7s\n' build result passed failed configure build test total
 for line in "${summary[@]}"; do echo "$line"; done
 echo

@@ -70,6 +70,7 @@ Big operator+(const Big& a, const Big& b) {
 Big operator*(const Big& a, const Big& b) {  // modulo 2^256
   Big r;
   for (size_t i = 0; i < 8; ++i) {
+    if (a.w[i] == 0) continue;
     uint64_t carry = 0;
     for (size_t j = 0; i + j < 8; ++j) {
       const uint64_t t = uint64_t{a.w[i]} * b.w[j] + r.w[i + j] + carry;
@@ -185,11 +186,11 @@ std::vector<int64_t> edge_raws_q32() {
   std::mt19937_64 g(0x51A7E5);
   std::vector<uint64_t> ks;
   for (uint64_t k = 1; k <= 4000; ++k) ks.push_back(k);
-  for (int i = 0; i < 4000; ++i) ks.push_back(1 + g() % 1367130550u);  // k·π/2 < 2^31
+  for (int i = 0; i < 4000; ++i) ks.push_back(1 + g() % 1367130000u);  // k·π/2 < 2^31
   for (const uint64_t k : ks) {
     const int64_t c = static_cast<int64_t>(near_multiple_of_half_pi(k, 32));
     for (int64_t d = -3; d <= 3; ++d) {
-      if (c + d > 0) both(c + d);
+      if (c > 3 && c <= INT64_MAX - 3) both(c + d);
     }
   }
   for (const int64_t c : k_convergents_q32) {
@@ -223,7 +224,7 @@ std::vector<int32_t> edge_raws_q16() {
   }
   for (const int32_t c : k_convergents_q16) {
     for (int32_t d = -2; d <= 2; ++d) {
-      if (c <= INT32_MAX - d) both(c + d);
+      if (d <= 0 || c <= INT32_MAX - d) both(c + d);
     }
   }
   return v;
@@ -557,8 +558,8 @@ TEST_CASE("atan2: Q32.32 within 2 raw units, Q16.16 within 1, whole input range"
       const int64_t y = draw_i64(g), x = draw_i64(g);
       check(y, x);
       if (i % 8 == 0) {
-        const int64_t near = x + (draw_i64(g) >> 40);  // |y| ≈ |x|: ratio near 1
-        check(near == INT64_MIN ? x : near, x);
+        const int64_t delta = static_cast<int64_t>(g() >> (41 + g() % 23));  // < 2^23
+        check(x > 0 ? x - delta : x + delta, x);  // |y| ≈ |x|: ratio near 1
       }
     }
     CHECK(bad_range == 0);
@@ -644,7 +645,7 @@ TEST_CASE("sqrt and rsqrt report domain faults and return defined values", "[fix
 TEST_CASE("fixed_math gives the same bits on every platform (golden hash)", "[fixed][math]") {
   // The constant was computed once on x86-64 (native __int128 path); i686,
   // the forced portable path and big-endian s390x must reproduce it.
-  constexpr uint64_t k_golden = 0;
+  constexpr uint64_t k_golden = 0x5FDCFBC42E2F0F40u;
   std::mt19937_64 g(0x601DE11);
   Fnv h;
   for (int i = 0; i < 100000; ++i) {

@@ -550,3 +550,30 @@ TEST_CASE("flags: user data, bullet, enable, awake, sleep", "[physics][body]") {
   REQUIRE(sensor.ok());
   CHECK(shape_is_sensor(sensor.value));
 }
+
+TEST_CASE("rotation stays unit length and on angle at slow and fast spins", "[physics][body]") {
+  ScopedWorld w;
+  // 10 rad/s: h·ω = 1/24 per sub-step, the polynomial path (turns by
+  // atan(h·ω)). 40 rad/s: h·ω = 1/6, the exact path (turns by h·ω).
+  const Q32 speeds[2] = {10_q32, 40_q32};
+  BodyId bodies[2];
+  for (int k = 0; k < 2; ++k) {
+    bodies[k] = make_body(w.id, BodyType::kinematic_body, vec2(0, 0));
+    REQUIRE(body_set_angular_velocity(bodies[k], speeds[k]).ok());
+  }
+  const int steps = 600;
+  run(w.id, steps);
+  const long double h = ld(k_dt / 4);
+  const long double pi = 3.14159265358979323846L;
+  for (int k = 0; k < 2; ++k) {
+    const Rot q = body_rotation(bodies[k]);
+    const long double norm = ld(q.c) * ld(q.c) + ld(q.s) * ld(q.s);
+    INFO("spin " << ld(speeds[k]) << " rad/s, |q|^2 - 1 = " << norm - 1.0L);
+    CHECK(std::fabs(norm - 1.0L) < 8.0L / k_two32);
+    const long double delta = h * ld(speeds[k]);
+    const long double turn = k == 0 ? std::atan(delta) : delta;
+    const long double expected = std::remainder(4.0L * steps * turn, 2.0L * pi);
+    const long double got = ld(body_angle(bodies[k]));
+    CHECK(std::fabs(std::remainder(got - expected, 2.0L * pi)) < 1e-5L);
+  }
+}

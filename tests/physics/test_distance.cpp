@@ -462,16 +462,18 @@ TEST_CASE("time_of_impact: a spinning plank reaches a wall", "[physics]") {
     const long double t_hi = first_reach(sb, 1, 0.05L, 0.7L, slop);
     const long double t_lo = first_reach(sb, 1, 0.05L, 0.7L, slop * 1.25L);
     INFO("shift " << static_cast<double>(shift) << ": toi " << static_cast<double>(ld(o.fraction)) << " in ["
-                  << static_cast<double>(t_lo) << ", " << static_cast<double>(t_hi) << "]");
+                  << static_cast<double>(t_lo) << ", " << static_cast<double>(t_hi) << "] after " << o.iterations
+                  << " iterations");
     CHECK(ld(o.fraction) >= t_lo - 1e-7L);
     CHECK(ld(o.fraction) <= t_hi + 1e-7L);
+    CHECK(o.iterations < k_max_toi_iterations);
   }
 }
 
 TEST_CASE("time_of_impact: random sweeps never tunnel", "[physics]") {
   std::mt19937_64 rng(0x544f4921u);
   const int cases = 1500 / k_scale;
-  int hits = 0, separated = 0, failed = 0;
+  int hits = 0, separated = 0, failed = 0, worst_iterations = 0;
   for (int c = 0; c < cases; ++c) {
     const ShapeProxy a = random_proxy(rng), b = random_proxy(rng);
     Sweep sa = still(draw_v(rng, -1, 1));
@@ -485,6 +487,7 @@ TEST_CASE("time_of_impact: random sweeps never tunnel", "[physics]") {
     sb.q1 = rot_from_angle(draw_q(rng, -3, 3));
     sb.q2 = mul_rot(sb.q1, rot_from_angle(draw_q(rng, -1.5L, 1.5L)));
     const ToiOutput o = time_of_impact(toi_input(a, sa, b, sb));
+    worst_iterations = std::max(worst_iterations, o.iterations);
     if (o.state == ToiState::overlapped) continue;
     const long double target = std::max(ld(k_linear_slop), ld(a.radius) + ld(b.radius) - ld(k_linear_slop));
     hits += o.state == ToiState::hit;
@@ -504,8 +507,32 @@ TEST_CASE("time_of_impact: random sweeps never tunnel", "[physics]") {
       if (s == 32 && o.state == ToiState::hit) REQUIRE(ld(d.distance) < target + ld(k_linear_slop) / 4 + 1e-7L);
     }
   }
-  INFO("hit " << hits << ", separated " << separated << ", failed " << failed);
+  INFO("hit " << hits << ", separated " << separated << ", failed " << failed << ", most iterations "
+                << worst_iterations);
   CHECK(hits > cases / 10);
   CHECK(separated > cases / 10);
   CHECK(failed <= cases / 50);
+}
+
+TEST_CASE("make_proxy: counts are clamped and shapes map to their cores", "[physics]") {
+  const ShapeProxy empty = make_proxy(nullptr, 0, q(0.5L));
+  CHECK(empty.count == 1);
+  CHECK(empty.points[0] == Vec2{});
+  CHECK(empty.radius == q(0.5L));
+  std::vector<Vec2> many;
+  for (int i = 0; i < 12; ++i) many.push_back(vec2(i, -i));
+  const ShapeProxy clamped = make_proxy(many.data(), 12, Q32::zero());
+  CHECK(clamped.count == k_max_polygon_vertices);
+  CHECK(clamped.points[7] == vec2(7, -7));
+  const ShapeProxy cap = make_proxy(Capsule{vec2(1, 2), vec2(3, 4), q(0.25L)});
+  CHECK(cap.count == 2);
+  CHECK(cap.points[1] == vec2(3, 4));
+  CHECK(cap.radius == q(0.25L));
+  const ShapeProxy seg = make_proxy(Segment{vec2(1, 2), vec2(3, 4)});
+  CHECK(seg.count == 2);
+  CHECK(seg.radius == Q32::zero());
+  const Polygon b = box(1, 2);
+  const ShapeProxy poly = make_proxy(b);
+  CHECK(poly.count == 4);
+  CHECK(poly.points[2] == vec2(1, 2));
 }

@@ -38,22 +38,18 @@ Rot rot_deg(double degrees) {
 }
 Transform pose(double x, double y, double degrees = 0.0) { return {v2(x, y), rot_deg(degrees)}; }
 
-/// A convex CCW polygon from points (normals from normalize(), area centroid).
+/// A convex CCW polygon from points (normals from normalize(); the centroid
+/// is the vertex average, which lies inside: only the chain code reads it).
 Polygon polygon_from(const std::vector<Vec2>& pts, Q32 radius = Q32::zero()) {
   Polygon p;
   p.count = static_cast<int32_t>(pts.size());
-  double area = 0, cx = 0, cy = 0;
+  Vec2 sum;
   for (size_t i = 0; i < pts.size(); ++i) {
-    const Vec2 a = pts[i];
-    const Vec2 b = pts[(i + 1) % pts.size()];
-    p.vertices[i] = a;
-    p.normals[i] = normalize(right_perp(b - a));
-    const double cr = dbl(a.x) * dbl(b.y) - dbl(a.y) * dbl(b.x);
-    area += cr;
-    cx += (dbl(a.x) + dbl(b.x)) * cr;
-    cy += (dbl(a.y) + dbl(b.y)) * cr;
+    p.vertices[i] = pts[i];
+    p.normals[i] = normalize(right_perp(pts[(i + 1) % pts.size()] - pts[i]));
+    sum += pts[i];
   }
-  p.centroid = v2(cx / (3 * area), cy / (3 * area));
+  p.centroid = {sum.x / p.count, sum.y / p.count};
   p.radius = radius;
   return p;
 }
@@ -181,19 +177,30 @@ std::string describe(const Manifold& m) {
 bool near(Q32 a, double b, double tol) { return std::fabs(dbl(a) - b) <= tol; }
 bool near(Vec2 a, double x, double y, double tol) { return near(a.x, x, tol) && near(a.y, y, tol); }
 
-/// Raw-integer random numbers (never std distributions). Draw one value per
-/// statement: the order in which function arguments are evaluated is
-/// unspecified, and gcc and clang differ.
+/// Raw-integer random numbers (never std distributions), turned into Q32
+/// values with integer arithmetic only, so every platform (x87, big-endian,
+/// no __int128) draws the same inputs. Draw one value per statement: the
+/// order in which function arguments are evaluated is unspecified, and gcc
+/// and clang differ.
 struct Rng {
   std::mt19937_64 gen;
   explicit Rng(uint64_t seed) : gen(seed) {}
-  /// Uniform-ish in [lo, hi] on a grid of 2^-24.
-  double uniform(double lo, double hi) {
-    const uint64_t r = gen() >> 40;  // 24 bits
-    return lo + (hi - lo) * static_cast<double>(r) / 16777215.0;
+  /// lo + (hi − lo)·k/2^24 for a 24-bit draw k (k/2^24 is the Q32 raw k·2^8).
+  Q32 uniform(Q32 lo, Q32 hi) {
+    const int64_t k = static_cast<int64_t>(gen() >> 40);
+    return lo + (hi - lo) * Q32::from_raw(k * 256);
   }
+  Q32 uniform(double lo, double hi) { return uniform(q(lo), q(hi)); }
+  /// An angle in [0, 2π) radians.
+  Q32 angle() { return uniform(Q32::zero(), k_two_pi); }
   int range(int lo, int hi) { return lo + static_cast<int>(gen() % static_cast<uint64_t>(hi - lo + 1)); }
 };
+
+/// len·(cos a, sin a), fixed point.
+Vec2 polar(Q32 len, Q32 a) {
+  const Rot r = rot_from_angle(a);
+  return {len * r.c, len * r.s};
+}
 
 // ---------------------------------------------------------------------------
 // Long double oracle: exact distance between the convex cores
@@ -291,49 +298,52 @@ LD core_distance(const OracleCore& a, const OracleCore& b) {
 
 Polygon random_polygon(Rng& rng) {
   const int n = rng.range(3, k_max_polygon_vertices);
-  // Angles with gaps of at least 360/(2n) degrees keep every vertex clearly convex.
-  std::vector<double> gaps(static_cast<size_t>(n));
-  double total = 0;
-  for (double& g : gaps) total += (g = rng.uniform(1.0, 3.0));
-  const double r = rng.uniform(0.05, 1.5);
-  const double sx = rng.uniform(0.15, 1.0);  // squash: thin polygons too
-  const double start = rng.uniform(0, 2 * k_pi_d);
-  std::vector<Vec2> pts;
-  double a = start;
-  for (int i = 0; i < n; ++i) {
-    pts.push_back(v2(r * sx * std::cos(a), r * std::sin(a)));
-    a += gaps[static_cast<size_t>(i)] / total * 2 * k_pi_d;
+  // Points on an ellipse; angle gaps within 1:3 of each other keep every
+  // vertex clearly convex.
+  std::vector<Q32> gaps(static_cast<size_t>(n));
+  Q32 total;
+  for (Q32& g : gaps) {
+    g = rng.uniform(1.0, 3.0);
+    total += g;
   }
-  const double radius = rng.range(0, 3) == 0 ? rng.uniform(0.005, 0.2) : 0.0;
-  return polygon_from(pts, q(radius));
+  const Q32 r = rng.uniform(0.05, 1.5);
+  const Q32 sx = rng.uniform(0.15, 1.0);  // squash: thin polygons too
+  Q32 a = rng.angle();
+  std::vector<Vec2> pts;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 p = polar(r, a);
+    pts.push_back({p.x * sx, p.y});
+    a += gaps[static_cast<size_t>(i)] / total * k_two_pi;
+  }
+  const Q32 radius = rng.range(0, 3) == 0 ? rng.uniform(0.005, 0.2) : Q32::zero();
+  return polygon_from(pts, radius);
 }
 
 ShapeGeometry random_shape(Rng& rng, int kind) {
   switch (kind) {
     case 0: {
-      // One draw per statement: argument evaluation order is unspecified.
-      const double cx = rng.uniform(-0.3, 0.3), cy = rng.uniform(-0.3, 0.3), r = rng.uniform(0.02, 1.0);
-      return geo(Circle{v2(cx, cy), q(r)});
+      const Q32 cx = rng.uniform(-0.3, 0.3), cy = rng.uniform(-0.3, 0.3), r = rng.uniform(0.02, 1.0);
+      return geo(Circle{{cx, cy}, r});
     }
     case 1: {
-      const double len = rng.uniform(0.01, 1.5), ang = rng.uniform(0, 2 * k_pi_d);
-      const double cx = rng.uniform(-0.3, 0.3), cy = rng.uniform(-0.3, 0.3);
-      return geo(Capsule{v2(cx, cy), v2(cx + len * std::cos(ang), cy + len * std::sin(ang)), q(rng.uniform(0.02, 0.5))});
+      const Q32 len = rng.uniform(0.01, 1.5), ang = rng.angle();
+      const Q32 cx = rng.uniform(-0.3, 0.3), cy = rng.uniform(-0.3, 0.3), r = rng.uniform(0.02, 0.5);
+      return geo(Capsule{{cx, cy}, Vec2{cx, cy} + polar(len, ang), r});
     }
     case 2: {
-      const double len = rng.uniform(0.01, 3.0), ang = rng.uniform(0, 2 * k_pi_d);
-      return geo(Segment{v2(0, 0), v2(len * std::cos(ang), len * std::sin(ang))});
+      const Q32 len = rng.uniform(0.01, 3.0), ang = rng.angle();
+      return geo(Segment{{}, polar(len, ang)});
     }
     case 3: return geo(random_polygon(rng));
     default: {
       // A chain segment with ghosts turning by up to ±100°.
-      const double len = rng.uniform(0.05, 3.0), ang = rng.uniform(0, 2 * k_pi_d);
-      const double t0 = rng.uniform(-1.75, 1.75), t2 = rng.uniform(-1.75, 1.75);
-      const double l0 = rng.uniform(0.05, 2.0), l2 = rng.uniform(0.05, 2.0);
+      const Q32 len = rng.uniform(0.05, 3.0), ang = rng.angle();
+      const Q32 t0 = rng.uniform(-1.75, 1.75), t2 = rng.uniform(-1.75, 1.75);
+      const Q32 l0 = rng.uniform(0.05, 2.0), l2 = rng.uniform(0.05, 2.0);
       ChainSegment s;
-      s.segment = {v2(0, 0), v2(len * std::cos(ang), len * std::sin(ang))};
-      s.ghost1 = v2(-l0 * std::cos(ang - t0), -l0 * std::sin(ang - t0));
-      s.ghost2 = v2(len * std::cos(ang) + l2 * std::cos(ang + t2), len * std::sin(ang) + l2 * std::sin(ang + t2));
+      s.segment = {{}, polar(len, ang)};
+      s.ghost1 = -polar(l0, ang - t0);
+      s.ghost2 = s.segment.point2 + polar(l2, ang + t2);
       s.chain_id = 1;
       return geo(s);
     }
@@ -385,6 +395,31 @@ TEST_CASE("box resting on a box: two points, normal up, ids", "[physics][manifol
     const Vec2 expect = rotate(fa.q, m.points[static_cast<size_t>(i)].anchor_a);
     CHECK(near(f.points[static_cast<size_t>(i)].anchor_a, dbl(expect.x), dbl(expect.y), 1e-8));
   }
+}
+
+TEST_CASE("tiny shapes far from the origin keep full precision", "[physics][manifold]") {
+  // 5 mm boxes (the smallest shape size) 10⁶ m from the origin, the pair
+  // turned by 30°: a 0.1 mm overlap and a 0.1 mm gap are both resolved to
+  // ~1e-9 m, because everything is solved relative to A.
+  const Polygon a = box(0.0025, 0.0025);
+  const Polygon b = box(0.0025, 0.0025);
+  const Transform xa{v2(999999.5, -999999.25), rot_deg(30)};
+  for (const double gap : {-0.0001, 0.0001}) {
+    const Transform xb = mul_transforms(xa, pose(0.001, 0.005 + gap));
+    const Manifold m = collide_polygons(a, xa, b, xb);
+    check_invariants(m, xa, xb);
+    REQUIRE(m.point_count == 2);
+    CHECK(near(m.normal, -0.5, std::sqrt(3.0) / 2, 1e-8));
+    CHECK(near(m.points[0].separation, gap, 1e-9));
+    CHECK(near(m.points[1].separation, gap, 1e-9));
+    CHECK(sorted_ids(m) == std::vector<uint16_t>{make_feature_id(2, 1), make_feature_id(3, 0)});
+  }
+  // Circles of 5 mm radius 1e-7 m apart along (0.6, 0.8).
+  const Circle c{v2(0, 0), q(0.005)};
+  const Manifold m = collide_circles(c, pose(-999999.75, 5e5), c, pose(-999999.75 + 0.00600006, 5e5 + 0.00800008));
+  REQUIRE(m.point_count == 1);
+  CHECK(near(m.normal, 0.6, 0.8, 1e-7));
+  CHECK(near(m.points[0].separation, 1e-7, 1e-9));
 }
 
 TEST_CASE("circles, and a circle on a segment's edge and vertex", "[physics][manifold]") {
@@ -718,10 +753,10 @@ TEST_CASE("collide(A, B) is flip(collide(B, A))", "[physics][manifold]") {
       const int ka = rng.range(0, 4), kb = rng.range(0, 4);
       if (ka == kb) continue;
       const ShapeGeometry a = random_shape(rng, ka), bb = random_shape(rng, kb);
-      const double ax = rng.uniform(-50, 50), ay = rng.uniform(-50, 50), adeg = rng.uniform(0, 360);
-      const double bx = rng.uniform(-2, 2), by = rng.uniform(-2, 2), bdeg = rng.uniform(0, 360);
-      const Transform xa = pose(ax, ay, adeg);
-      const Transform xb{xa.p + v2(bx, by), rot_deg(bdeg)};
+      const Q32 ax = rng.uniform(-50, 50), ay = rng.uniform(-50, 50), aa = rng.angle();
+      const Q32 bx = rng.uniform(-2, 2), by = rng.uniform(-2, 2), bang = rng.angle();
+      const Transform xa{{ax, ay}, rot_from_angle(aa)};
+      const Transform xb{xa.p + Vec2{bx, by}, rot_from_angle(bang)};
       const Manifold ab = collide(a, xa, bb, xb);
       const Manifold ba = collide(bb, xb, a, xa);
       INFO("kinds " << ka << " " << kb);
@@ -828,17 +863,17 @@ namespace {
 
 /// Oracle separation of the rounded shapes (core distance − radii; for
 /// overlapping cores −radii).
-double oracle_separation(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b, Transform xb, double* out_core) {
+LD oracle_separation(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b, Transform xb, LD* out_core) {
   const OracleCore oa = oracle_core(a, xa), ob = oracle_core(b, xb);
-  const double core = static_cast<double>(core_distance(oa, ob));
+  const LD core = core_distance(oa, ob);
   if (out_core) *out_core = core;
-  return core - static_cast<double>(oa.radius + ob.radius);
+  return core - (oa.radius + ob.radius);
 }
 
 /// Penetration depth of overlapping cores: the smallest overlap over the
 /// edge normals of both (the Minkowski difference's normals; for a 2-gon its
 /// ±normal). Needs at least one core with two or more points.
-double oracle_depth(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b, Transform xb) {
+LD oracle_depth(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b, Transform xb) {
   const OracleCore oa = oracle_core(a, xa), ob = oracle_core(b, xb);
   std::vector<P2> axes;
   for (const OracleCore* o : {&oa, &ob}) {
@@ -859,7 +894,7 @@ double oracle_depth(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b
     for (const P2& p : ob.pts) bmin = std::min(bmin, dotl(u, p));
     best = std::min(best, amax - bmin);
   }
-  return static_cast<double>(best);
+  return best;
 }
 
 struct RandomPair {
@@ -878,24 +913,27 @@ RandomPair random_pair(Rng& rng) {
   if ((r.ka == 2 || r.ka == 4) && (r.kb == 2 || r.kb == 4)) r.kb = rng.range(0, 1) == 0 ? 0 : 3;
   r.a = random_shape(rng, r.ka);
   r.b = random_shape(rng, r.kb);
-  const double ax = rng.uniform(-1e5, 1e5), ay = rng.uniform(-1e5, 1e5), adeg = rng.uniform(0, 360);
-  r.xa = pose(ax, ay, adeg);
-  const double ox = rng.uniform(-2.5, 2.5), oy = rng.uniform(-2.5, 2.5);
-  const Rot qb = rot_deg(rng.uniform(0, 360));
-  const double target = rng.range(0, 2) == 0 ? rng.uniform(-0.1, 0.0) : rng.uniform(-0.03, 0.03);
-  const auto place = [&](double t) { return Transform{r.xa.p + v2(ox * (1 - t), oy * (1 - t)), qb}; };
-  r.xb = place(0);
+  const Q32 ax = rng.uniform(-1e5, 1e5), ay = rng.uniform(-1e5, 1e5), aa = rng.angle();
+  r.xa = {{ax, ay}, rot_from_angle(aa)};
+  const Q32 ox = rng.uniform(-2.5, 2.5), oy = rng.uniform(-2.5, 2.5), ba = rng.angle();
+  const Rot qb = rot_from_angle(ba);
+  const Q32 target = rng.range(0, 2) == 0 ? rng.uniform(-0.1, 0.0) : rng.uniform(-0.03, 0.03);
+  // B's origin at A's plus (ox, oy)·(1 − t), t in [0, 1] (Q32).
+  const auto place = [&](Q32 t) {
+    return Transform{r.xa.p + Vec2{ox * (Q32::one() - t), oy * (Q32::one() - t)}, qb};
+  };
+  r.xb = place(Q32::zero());
   if (rng.range(0, 3) != 0) {
     // Signed separation: core distance, or minus the penetration depth.
-    const auto f = [&](double t) {
-      double core = 0;
-      const double sep = oracle_separation(r.a, r.xa, r.b, place(t), &core);
-      return (core > 0 ? sep : sep - oracle_depth(r.a, r.xa, r.b, place(t))) - target;
+    const auto f = [&](Q32 t) {
+      LD core = 0;
+      const LD sep = oracle_separation(r.a, r.xa, r.b, place(t), &core);
+      return (core > 0 ? sep : sep - oracle_depth(r.a, r.xa, r.b, place(t))) - ld(target);
     };
-    if (f(0) > 0 && f(1) < 0) {
-      double lo = 0, hi = 1;
+    if (f(Q32::zero()) > 0 && f(Q32::one()) < 0) {
+      Q32 lo = Q32::zero(), hi = Q32::one();
       for (int i = 0; i < 36; ++i) {  // 2^-36 of the path: ~5e-11 m
-        const double mid = 0.5 * (lo + hi);
+        const Q32 mid = Q32::from_raw((lo.raw + hi.raw) / 2);
         (f(mid) > 0 ? lo : hi) = mid;
       }
       r.xb = place(lo);
@@ -932,20 +970,15 @@ TEST_CASE("random pairs: separation agrees with the exact core distance", "[phys
   double worst_disjoint = 0, worst_shallow = 0;
   int disjoint_checked = 0, inexact = 0, overlap_checked = 0, shallow_checked = 0, empty_checked = 0;
   int chain_front = 0;
-  uint64_t hash = 0xcbf29ce484222325ull;
   for (int n = 0; n < k_random_pairs; ++n) {
     const RandomPair r = random_pair(rng);
     const Manifold m = collide(r.a, r.xa, r.b, r.xb);
     INFO("pair " << n << " kinds " << r.ka << " " << r.kb << "\n A " << describe(r.a, r.xa) << "\n B "
                  << describe(r.b, r.xb) << "\n " << describe(m));
     check_invariants(m, r.xa, r.xb);
-    {
-      const auto mix = [&](int64_t v) { if (n < 5000) hash = (hash ^ static_cast<uint64_t>(v)) * 0x100000001b3ull; };
-      mix(m.point_count); mix(m.normal.x.raw); mix(m.normal.y.raw);
-      for (int32_t i = 0; i < m.point_count; ++i) { const auto& p = m.points[static_cast<size_t>(i)]; mix(p.point.x.raw); mix(p.point.y.raw); mix(p.anchor_b.x.raw); mix(p.separation.raw); mix(p.id); }
-    }
-    double core = 0;
-    const double sep = oracle_separation(r.a, r.xa, r.b, r.xb, &core);
+    LD core_ld = 0;
+    const double sep = static_cast<double>(oracle_separation(r.a, r.xa, r.b, r.xb, &core_ld));
+    const double core = static_cast<double>(core_ld);
     if (r.ka == 4 || r.kb == 4) {
       // One-sided: the separation is the signed depth along the chain's
       // normal, so a body partly on the solid side may be reported deeper
@@ -996,7 +1029,7 @@ TEST_CASE("random pairs: separation agrees with the exact core distance", "[phys
       CHECK(dbl(min_separation(m)) <= radii + 1e-7);
       ++overlap_checked;
       if (r.ka != 0 && r.kb != 0) {
-        const double depth = oracle_depth(r.a, r.xa, r.b, r.xb);
+        const double depth = static_cast<double>(oracle_depth(r.a, r.xa, r.b, r.xb));
         const double err = dbl(min_separation(m)) - (radii - depth);
         if (depth < 0.05) {
           // Shallow: the SAT face is the minimum-depth axis (A kept within
@@ -1009,7 +1042,6 @@ TEST_CASE("random pairs: separation agrees with the exact core distance", "[phys
       }
     }
   }
-  WARN("HASH " << std::hex << hash << std::dec);
   WARN("random pairs " << k_random_pairs << ": disjoint in margin " << disjoint_checked << " (worst |error| "
                        << worst_disjoint << " m, " << inexact << " above 1e-7 m); beyond margin " << empty_checked
                        << "; overlapping " << overlap_checked << " (shallow " << shallow_checked << ", worst |error| "
