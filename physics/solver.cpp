@@ -1,6 +1,6 @@
 // solver.cpp — the body stages of the step: prepare, integrate velocities,
-// integrate positions, finalize; and the contact stages' places (empty until
-// the contact task fills them).
+// integrate positions, finalize; the contact stages forward to contact.cpp
+// and contact_solver.cpp.
 //
 // Integration is symplectic Euler per sub-step of h = dt/n seconds:
 //
@@ -63,10 +63,8 @@ inline Q32 damping_factor(Q32 h, Q32 c) {
 }  // namespace
 
 void stage_update_contacts(World* world, StepContext* context) {
-  // Contact task: update broad-phase pairs, create and destroy contacts keyed
-  // by (shape id, shape id), compute manifolds from start-of-step poses.
-  (void)world;
   (void)context;
+  update_contacts(world);
 }
 
 void stage_prepare_bodies(World* world, StepContext* context) {
@@ -122,11 +120,12 @@ void stage_prepare_bodies(World* world, StepContext* context) {
 }
 
 void stage_prepare_contacts(World* world, StepContext* context) {
-  // Contact task: contact constraints from manifolds, referring to bodies by
-  // solver index (context->body_to_solver; static bodies have none), with
-  // inverse masses copied from context->params.
+  prepare_contact_constraints(world, context);
+}
+
+void stage_record_approach(World* world, StepContext* context) {
   (void)world;
-  (void)context;
+  record_contact_approach(context);
 }
 
 void stage_integrate_velocities(World* world, StepContext* context) {
@@ -148,15 +147,13 @@ void stage_integrate_velocities(World* world, StepContext* context) {
 }
 
 void stage_warm_start(World* world, StepContext* context) {
-  // Contact task: apply the stored impulses of persisting contact points.
   (void)world;
-  (void)context;
+  warm_start_contacts(context);
 }
 
 void stage_solve(World* world, StepContext* context) {
-  // Contact task: soft contact constraints with position bias.
   (void)world;
-  (void)context;
+  solve_contacts(context);
 }
 
 void stage_integrate_positions(World* world, StepContext* context) {
@@ -179,23 +176,19 @@ void stage_integrate_positions(World* world, StepContext* context) {
 }
 
 void stage_relax(World* world, StepContext* context) {
-  // Contact task: constraints again without bias, removing the velocity the
-  // bias added.
   (void)world;
-  (void)context;
+  relax_contacts(context);
 }
 
 void stage_restitution(World* world, StepContext* context) {
-  // Contact task: restitution from the approach speeds recorded before the
-  // sub-steps (see the energy requirements).
+  // Bounces are solved inside the sub-steps (contact_solver.cpp); nothing
+  // is left to do after them.
   (void)world;
   (void)context;
 }
 
 void stage_store_impulses(World* world, StepContext* context) {
-  // Contact task: keep each point's impulses for the next step's warm start.
-  (void)world;
-  (void)context;
+  store_contact_impulses(world, context);
 }
 
 void stage_finalize_bodies(World* world, StepContext* context) {

@@ -440,6 +440,15 @@ AABB shape_aabb(ShapeId shape);
 /// invalid handle or a segment.
 MassData shape_mass_data(ShapeId shape);
 
+// Material mixing for a contact between shapes A and B (recomputed every
+// step, so the setters below apply at once):
+//   friction    = sqrt(friction_A · friction_B)  (rounded to nearest; a
+//                 frictionless shape makes the pair frictionless)
+//   restitution = max(restitution_A, restitution_B); it applies only to
+//                 approaches faster than the world's restitution threshold.
+// Sensor shapes never form contacts; a pair forms one only when at least one
+// body is dynamic and the filters agree (see Filter).
+
 /// Friction coefficient; 0 for an invalid handle.
 Q32 shape_friction(ShapeId shape);
 /// Sets the friction coefficient, [0, k_max_friction].

@@ -417,6 +417,8 @@ StepResult world_step(WorldId id, Q32 time_step) {
   stage_prepare_bodies(world, context);
   stage_prepare_contacts(world, context);
   for (int32_t i = 0; i < n; ++i) {
+    context->sub_step_index = i;
+    stage_record_approach(world, context);
     stage_integrate_velocities(world, context);
     stage_warm_start(world, context);
     stage_solve(world, context);
@@ -430,6 +432,7 @@ StepResult world_step(WorldId id, Q32 time_step) {
   // The arena is empty again; let it grow (outside the step's timing) if this
   // step spilled to the heap.
   arena_grow(&world->arena);
+  reserve_contact_headroom(world);
   world->last_solver_body_count = context->solver_body_count;
   ++world->step_count;
   world->locked = false;

@@ -8,20 +8,21 @@
 // generation is bumped when its world is destroyed.
 //
 // The step is a fixed list of stages (world.cpp, world_step), each a function
-// of (World*, StepContext*). Contact stages are empty until the contact task
-// fills them; their place in the order is fixed now:
+// of (World*, StepContext*). The contact stages call contact.cpp and
+// contact_solver.cpp:
 //
-//   update_contacts            broad-phase pairs → contacts → manifolds (contact task)
+//   update_contacts            broad-phase pairs → contacts → manifolds (contact.cpp)
 //   prepare_bodies             gather simulated bodies into solver arrays (arena)
-//   prepare_contacts           contact constraints from manifolds (contact task)
+//   prepare_contacts           contact constraints from manifolds (contact_solver.cpp)
 //   for each sub-step (h = dt / n):
+//     record_approach          each contact point's normal velocity before gravity (bounce reference)
 //     integrate_velocities     v ← v/(1 + h·c) + h·(s·g + F/m); ω likewise; clamp speeds
-//     warm_start               apply last step's impulses (contact task)
-//     solve                    soft contact constraints with bias (contact task)
+//     warm_start               apply the accumulated impulses
+//     solve                    soft contact constraints with bias, bounces latched
 //     integrate_positions      c ← c + h·v; q ← integrate_rotation(q, h·ω)
-//     relax                    constraints without bias (contact task)
-//   restitution                (contact task)
-//   store_impulses             for warm starting (contact task)
+//     relax                    constraints without bias (+2 passes where a bounce latched)
+//   restitution                empty: bounces are solved inside the sub-steps (contact_solver.cpp)
+//   store_impulses             for warm starting; frees the constraints
 //   finalize_bodies            write back, clear forces, leave-bounds check, shape AABBs
 //
 // The issue lists "integrate velocities → update contacts → solve → ...": with
@@ -35,6 +36,9 @@
 
 #include "physics/arena.h"
 #include "physics/body.h"
+#include "physics/broad_phase.h"
+#include "physics/contact.h"
+#include "physics/contact_solver.h"
 #include "physics/defs.h"
 #include "physics/id_pool.h"
 #include "physics/ids.h"
@@ -61,6 +65,18 @@ struct StepContext {
   BodyState* states = nullptr;         ///< per solver index
   SolverBodyParams* params = nullptr;  ///< per solver index
   uint32_t flags = 0;                  ///< k_step_flag_* raised so far
+
+  // Contact solver (contact_solver.cpp); arena arrays freed by store_impulses.
+  int32_t sub_step_index = 0;          ///< the current sub-step, 0…n−1
+  Q32 inv_h;                           ///< 1/h, 1/s, rounded to nearest
+  Q32 max_push_speed;                  ///< m/s (WorldDef::max_contact_push_speed)
+  Q32 restitution_threshold;           ///< m/s
+  Softness contact_softness;           ///< dynamic–dynamic contacts
+  Softness static_softness;            ///< contacts with a body of zero inverse mass (twice the stiffness)
+  int32_t constraint_count = 0;
+  ContactConstraint* constraints = nullptr;  ///< in contact order
+  int32_t* bounce_marks = nullptr;     ///< per solver index: last sub-step with a latched bounce, or −1
+  bool bounced_this_sub_step = false;  ///< some point latched a bounce in the current sub-step
 };
 
 /// A simulation world.
@@ -75,6 +91,10 @@ struct World {
   IdPool shape_pool;
   std::vector<Shape> shapes;                    ///< by shape index
   std::vector<ShapeGeometry> shape_geometries;  ///< by shape index
+
+  BroadPhase broad_phase;            ///< pair buffers (broad_phase.h)
+  std::vector<Contact> contacts;     ///< sorted by (shape_a, shape_b) (contact.h)
+  std::vector<Contact> contact_scratch;  ///< the next list is built here, then swapped
 
   Arena arena;                       ///< per-step scratch
   StepContext context;               ///< the current / last step
@@ -120,6 +140,8 @@ void stage_update_contacts(World* world, StepContext* context);
 void stage_prepare_bodies(World* world, StepContext* context);
 /// Contact constraints from manifolds. Empty until the contact task.
 void stage_prepare_contacts(World* world, StepContext* context);
+/// Records each contact point's approach velocity (before gravity).
+void stage_record_approach(World* world, StepContext* context);
 /// One sub-step of velocity integration with damping and speed clamps.
 void stage_integrate_velocities(World* world, StepContext* context);
 /// Warm starting. Empty until the contact task.

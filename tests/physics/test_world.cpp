@@ -593,3 +593,40 @@ TEST_CASE("world_step makes no heap allocation once warmed up", "[physics][world
   }
   CHECK(later == 0);
 }
+
+TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "[physics][world]") {
+  // A pile of boxes and circles falling onto the ground: contacts appear,
+  // persist and vanish while the count is measured.
+  ScopedWorld w;
+  {
+    BodyDef gd = default_body_def();
+    gd.position = {0_q32, -1_q32};
+    Result<BodyId> g = create_body(w.id, gd);
+    REQUIRE(g.ok());
+    Polygon ground;
+    REQUIRE(make_box(30_q32, 1_q32, &ground).ok);
+    REQUIRE(create_polygon_shape(g.value, default_shape_def(), ground).ok());
+  }
+  for (int k = 0; k < 30; ++k) {
+    const BodyId b = make_dynamic(w.id, {Q32::from_int(k % 6) - 3_q32, Q32::from_int(1 + k / 3)});
+    if (k % 2 == 0) {
+      add_circle(b, 0.4_q32);
+    } else {
+      Polygon box;
+      REQUIRE(make_box(0.4_q32, 0.3_q32, &box).ok);
+      REQUIRE(create_polygon_shape(b, default_shape_def(), box).ok());
+    }
+  }
+  for (int k = 0; k < 180; ++k) REQUIRE(world_step(w.id, k_dt).ok());  // warm-up: the pile forms
+  int64_t later = 0;
+  for (int k = 0; k < 120; ++k) {
+    g_allocation_count = 0;
+    g_count_allocations = true;
+    const StepResult r = world_step(w.id, k_dt);
+    g_count_allocations = false;
+    REQUIRE(r.ok());
+    later += g_allocation_count.load();
+  }
+  CHECK(find_world(w.id)->contacts.size() > 20u);
+  CHECK(later == 0);
+}

@@ -44,6 +44,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixed/fixed.h"
@@ -220,10 +221,14 @@ void bm_mul_latency(benchmark::State& state) {
   constexpr std::size_t k_chain = 256;
   typename Ops::T x = Ops::from(1.2345);
   typename Ops::T c = Ops::from(1.0);
-  benchmark::DoNotOptimize(c);  // the optimiser no longer knows c == 1
+  // Hide c == 1 from the optimiser: c's address escapes into an asm with a
+  // memory clobber, so c must be stored first and reloaded after. (Not
+  // DoNotOptimize(c): g++ 12 dropped the store of 1.0 through the
+  // read-write "+m,r" operand, leaving c uninitialised.)
+  benchmark::DoNotOptimize(&c);
   for (auto _ : state) {
     for (std::size_t i = 0; i < k_chain; ++i) x = Ops::mul(x, c);
-    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(std::as_const(x));
   }
   set_per_op(state, k_chain);
 }

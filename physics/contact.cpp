@@ -1,0 +1,129 @@
+// contact.cpp — contact lifetime and narrow phase.
+//
+// ORDERING CHAIN (why every peer processes contacts in the same order):
+//   1. Shape indices come from the shape id pool, lowest free index first, so
+//      the same calls in the same order give the same indices (id_pool.h).
+//   2. The broad phase reports pairs as (lower index, higher index) sorted by
+//      that key, with no duplicates (broad_phase.h; the naive one generates
+//      them in that order, others must sort on the unique key).
+//   3. update_contacts merges that list with the previous contact list (also
+//      sorted by key) in one forward pass: a key in both keeps its contact
+//      (impulses carried), a key only in the pairs creates a contact, a key
+//      only in the old list is destroyed. The result is again sorted by key.
+//   4. Within a contact, manifold points come in collide()'s order; old
+//      impulses are matched by feature id, first match wins (ids within one
+//      manifold are distinct).
+//   5. The solver builds one constraint per touching contact that has a
+//      simulated body, in contact order, and solves them in that order
+//      (scalar Gauss-Seidel); impulses go back to the contacts by index.
+//   Nothing here depends on addresses, hash order or thread timing.
+//
+// Memory: World::contacts and World::contact_scratch are swapped each step
+// (the new list is built in the scratch vector); both only grow, so after the
+// first steps of a scene no allocation happens here.
+#include "physics/contact.h"
+
+#include <utility>
+
+#include "physics/broad_phase.h"
+#include "physics/world.h"
+
+namespace tandem {
+
+uint64_t contact_key(const Contact& contact) { return shape_pair_key(contact.shape_a, contact.shape_b); }
+
+Q32 mix_friction(Q32 a, Q32 b) {
+  // a, b ≤ k_max_friction = 100: the product ≤ 1e4, no saturation.
+  return sqrt(a * b);
+}
+
+Q32 mix_restitution(Q32 a, Q32 b) { return max(a, b); }
+
+namespace {
+
+/// Recomputes the manifold of `c` and carries impulses from `old` (the same
+/// contact last step, or null) by feature id.
+void update_manifold(const World& world, Contact* c, const Contact* old) {
+  const size_t sa = static_cast<size_t>(c->shape_a);
+  const size_t sb = static_cast<size_t>(c->shape_b);
+  const Shape& shape_a = world.shapes[sa];
+  const Shape& shape_b = world.shapes[sb];
+  const Transform xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
+  const Transform xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
+  c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
+  c->friction = mix_friction(shape_a.friction, shape_b.friction);
+  c->restitution = mix_restitution(shape_a.restitution, shape_b.restitution);
+  c->normal_impulse = {};
+  c->tangent_impulse = {};
+  const int32_t count = c->manifold.point_count;
+  c->flags = count > 0 ? (c->flags | k_contact_touching) : (c->flags & ~k_contact_touching);
+  if (old == nullptr) return;
+  for (int32_t i = 0; i < count; ++i) {
+    const uint16_t id = c->manifold.points[static_cast<size_t>(i)].id;
+    for (int32_t j = 0; j < old->manifold.point_count; ++j) {
+      if (old->manifold.points[static_cast<size_t>(j)].id != id) continue;
+      c->normal_impulse[static_cast<size_t>(i)] = old->normal_impulse[static_cast<size_t>(j)];
+      c->tangent_impulse[static_cast<size_t>(i)] = old->tangent_impulse[static_cast<size_t>(j)];
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+void update_contacts(World* world) {
+  broad_phase_update_pairs(world);
+  const std::vector<ShapePair>& pairs = world->broad_phase.pairs;
+  std::vector<Contact>& old_list = world->contacts;
+  std::vector<Contact>& next = world->contact_scratch;
+  next.clear();
+  size_t cursor = 0;
+  for (const ShapePair& pair : pairs) {
+    const uint64_t key = shape_pair_key(pair.shape_a, pair.shape_b);
+    while (cursor < old_list.size() && contact_key(old_list[cursor]) < key) ++cursor;  // destroyed
+    const Contact* old = nullptr;
+    const uint32_t gen_a = id_pool_generation(world->shape_pool, pair.shape_a);
+    const uint32_t gen_b = id_pool_generation(world->shape_pool, pair.shape_b);
+    if (cursor < old_list.size() && contact_key(old_list[cursor]) == key) {
+      const Contact& candidate = old_list[cursor];
+      if (candidate.generation_a == gen_a && candidate.generation_b == gen_b) old = &candidate;
+      ++cursor;
+    }
+    Contact c;
+    c.shape_a = pair.shape_a;
+    c.shape_b = pair.shape_b;
+    c.generation_a = gen_a;
+    c.generation_b = gen_b;
+    c.body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
+    c.body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
+    c.flags = old != nullptr ? old->flags : 0;
+    update_manifold(*world, &c, old);
+    next.push_back(c);
+  }
+  std::swap(world->contacts, world->contact_scratch);
+}
+
+namespace {
+
+/// Grows only when the use passes 3/4 of the capacity, then to twice the
+/// use plus 64, so a scene whose counts drift a little never reallocates.
+template <typename T>
+void reserve_for(std::vector<T>* v, size_t use) {
+  if (4 * use + 4 <= 3 * v->capacity()) return;
+  v->reserve(2 * use + 64);
+}
+
+}  // namespace
+
+void reserve_contact_headroom(World* world) {
+  const size_t contacts = world->contacts.size();
+  reserve_for(&world->contacts, contacts);
+  reserve_for(&world->contact_scratch, contacts);
+  BroadPhase& bp = world->broad_phase;
+  reserve_for(&bp.pairs, bp.pairs.size());
+  const size_t shapes = static_cast<size_t>(id_pool_capacity(world->shape_pool));
+  reserve_for(&bp.proxies, shapes);
+  reserve_for(&bp.fat_bounds, shapes);
+}
+
+}  // namespace tandem

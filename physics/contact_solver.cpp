@@ -1,0 +1,361 @@
+// contact_solver.cpp — the sub-stepped soft contact solver (our own take on
+// the structure of Box2D v3's soft step), with restitution solved inside the
+// sub-steps ("sub-step bounce", shared/reference/restitution/README.md).
+//
+// PER STEP (prepare_contact_constraints): for every touching contact with a
+// simulated body, in contact order, one constraint with the normal, copies of
+// both inverse masses (0 for a body that is not simulated), the mixed
+// friction and restitution, and per point: anchors from each centre of mass
+// (fixed for the step), normal and tangent effective masses 1/k (the only
+// divisions; the inner loops multiply), the anchor in each body frame for
+// tracking the separation, and the warm-start impulses. The soft coefficients
+// are computed once per step: contact_hertz is capped at a quarter of the
+// sub-step rate, and a contact with an immovable side uses twice that
+// stiffness (as Box2D v3 does).
+//
+// PER SUB-STEP:
+//   record_approach   vn0 = relative normal velocity at each point, before
+//                     gravity and forces are integrated (the bounce
+//                     reference; a body resting on the ground has vn0 ≈ 0).
+//   warm start        apply the accumulated impulses (a point that bounced
+//                     in the previous sub-step restarts from zero).
+//   solve (bias)      current separation s = (c_B + R_B·l_B − c_A − R_A·l_A)·n
+//                     + adjusted separation. A point is "active" when it
+//                     touches (s ≤ 0) or would within this sub-step
+//                     (s + h·(vn0 + kick) < 0). An active point closing faster
+//                     than the restitution threshold with restitution > 0
+//                     LATCHES a bounce for this sub-step: it becomes a rigid
+//                     constraint (mass scale 1, impulse scale 0, no soft push)
+//                     with target vn ≥ −e·vn0, in this sub-step's solve and
+//                     relax passes only. Other points: speculative (s > 0):
+//                     bias s/h, rigid; touching: soft, bias max(rate·s,
+//                     −push speed). Gate: a speculative point that is not
+//                     about to touch may only reduce its impulse, so a
+//                     secondary collision caused by another bounce in this
+//                     sub-step is bounced in the next one instead of being
+//                     caught inelastically.
+//   integrate positions
+//   relax (no bias)   rigid, bias 0 for touching points, skipping speculative
+//                     points and points that were not active in this sub-step
+//                     and carry no impulse. When some point latched a bounce in
+//                     this sub-step, two more relax passes run over the
+//                     constraints of bodies involved in a bounce (so a bounce
+//                     inside a touching group settles to the elastic answer).
+// AFTER THE SUB-STEPS: no restitution pass (Box2D v3's end-of-step pass uses
+// the velocity at prepare and loses a third of a dropped ball's energy); a
+// point that bounced in the last sub-step stores a zero normal impulse.
+//
+// Friction: Coulomb, |λ_t| ≤ μ·λ_n per point, solved after the normal
+// impulses of the constraint in the same pass (bias-free).
+//
+// Arithmetic: every product is one Q32 multiplication (nearest, ties away
+// from zero); dot and cross are exact 128-bit sums rounded once. Within the
+// limits of limits.h (masses, speeds, sizes) no product saturates: impulses
+// are at most mass × speed ≤ 1e5 kg × 2e3 m/s.
+//
+// Rejected: Box2D v3's end-of-step restitution (energy loss above); holding
+// a bounce target for the rest of the step (fights gravity, gains energy);
+// re-normalising rotations here (solver.cpp's integrate_rotation does it
+// cheaply); storing deltas from the start of the step in BodyState (it holds
+// absolute poses; l_A/l_B rotate with the body instead, 4 products per side).
+#include "physics/contact_solver.h"
+
+#include "physics/world.h"
+
+namespace tandem {
+
+namespace {
+
+/// Loads a constraint's body: the solver state, or a zero-velocity dummy at
+/// the origin with the identity rotation (writes to it leave it unchanged
+/// because the inverse masses are zero).
+inline BodyState* body_state(BodyState* states, int32_t index, BodyState* dummy) {
+  return index >= 0 ? &states[index] : dummy;
+}
+
+/// Velocity of the point at anchor r of a body: v + ω × r.
+inline Vec2 point_velocity(Vec2 v, Q32 w, Vec2 r) { return v + cross(w, r); }
+
+}  // namespace
+
+Softness make_softness(Q32 hertz, Q32 zeta, Q32 h) {
+  const Q32 omega = k_two_pi * hertz;
+  const Q32 a1 = zeta * 2 + h * omega;
+  const Q32 a2 = h * omega * a1;
+  const Q32 a3 = Q32::one() / (Q32::one() + a2);
+  Softness s;
+  s.bias_rate = a1 > Q32::zero() ? omega / a1 : Q32::zero();
+  s.mass_scale = a2 * a3;
+  s.impulse_scale = a3;
+  return s;
+}
+
+void prepare_contact_constraints(World* world, StepContext* context) {
+  const Q32 h = context->h;
+  context->inv_h = Q32::one() / h;
+  context->max_push_speed = world->def.max_contact_push_speed;
+  context->restitution_threshold = world->def.restitution_threshold;
+  // Stiffness capped at a quarter of the sub-step rate (stability).
+  const Q32 hertz = min(world->def.contact_hertz, context->inv_h / 4);
+  context->contact_softness = make_softness(hertz, world->def.contact_damping_ratio, h);
+  context->static_softness = make_softness(hertz * 2, world->def.contact_damping_ratio, h);
+
+  const std::vector<Contact>& contacts = world->contacts;
+  int32_t count = 0;
+  for (const Contact& c : contacts) {
+    if ((c.flags & k_contact_touching) == 0) continue;
+    if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
+        context->body_to_solver[static_cast<size_t>(c.body_b)] == k_null_index) {
+      continue;
+    }
+    ++count;
+  }
+  Arena* arena = &world->arena;
+  context->constraints = arena_allocate_array<ContactConstraint>(arena, count, "contact_constraints");
+  context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
+  context->constraint_count = count;
+  for (int32_t i = 0; i < context->solver_body_count; ++i) context->bounce_marks[i] = -1;
+
+  const BodyState dummy{};
+  int32_t n = 0;
+  for (size_t ci = 0; ci < contacts.size(); ++ci) {
+    const Contact& c = contacts[ci];
+    if ((c.flags & k_contact_touching) == 0) continue;
+    const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
+    const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
+    if (ia == k_null_index && ib == k_null_index) continue;
+    const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
+    const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
+    ContactConstraint& cc = context->constraints[n++];
+    cc = ContactConstraint{};
+    cc.solver_a = ia;
+    cc.solver_b = ib;
+    cc.contact_index = static_cast<int32_t>(ci);
+    cc.point_count = c.manifold.point_count;
+    cc.normal = c.manifold.normal;
+    cc.friction = c.friction;
+    cc.restitution = c.restitution;
+    Vec2 dv_a{}, dv_b{};
+    if (ia >= 0) {
+      const SolverBodyParams& p = context->params[ia];
+      cc.inv_mass_a = p.inv_mass;
+      cc.inv_inertia_a = p.inv_inertia;
+      dv_a = p.delta_linear_velocity;
+    }
+    if (ib >= 0) {
+      const SolverBodyParams& p = context->params[ib];
+      cc.inv_mass_b = p.inv_mass;
+      cc.inv_inertia_b = p.inv_inertia;
+      dv_b = p.delta_linear_velocity;
+    }
+    cc.kick = dot(dv_b - dv_a, cc.normal);
+    const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
+    cc.softness = rigid_side ? context->static_softness : context->contact_softness;
+
+    const BodyState& state_a = ia >= 0 ? context->states[ia] : dummy;
+    const BodyState& state_b = ib >= 0 ? context->states[ib] : dummy;
+    const Vec2 n_vec = cc.normal;
+    const Vec2 t_vec = right_perp(n_vec);
+    const Vec2 com_offset_a = sim_a.center - sim_a.transform.p;
+    const Vec2 com_offset_b = sim_b.center - sim_b.transform.p;
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
+      ContactConstraintPoint& cp = cc.points[j];
+      cp.anchor_a = mp.anchor_a - com_offset_a;
+      cp.anchor_b = mp.anchor_b - com_offset_b;
+      cp.local_a = ia >= 0 ? inv_rotate(state_a.rotation, cp.anchor_a) : sim_a.center + cp.anchor_a;
+      cp.local_b = ib >= 0 ? inv_rotate(state_b.rotation, cp.anchor_b) : sim_b.center + cp.anchor_b;
+      const Vec2 d0 = (state_b.center - state_a.center) +
+                      (rotate(state_b.rotation, cp.local_b) - rotate(state_a.rotation, cp.local_a));
+      cp.adjusted_separation = mp.separation - dot(d0, n_vec);
+      const Q32 rn_a = cross(cp.anchor_a, n_vec), rn_b = cross(cp.anchor_b, n_vec);
+      const Q32 k_normal = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rn_a * rn_a +
+                           cc.inv_inertia_b * rn_b * rn_b;
+      cp.normal_mass = k_normal > Q32::zero() ? Q32::one() / k_normal : Q32::zero();
+      cp.soft_normal_mass = cp.normal_mass * cc.softness.mass_scale;
+      const Q32 rt_a = cross(cp.anchor_a, t_vec), rt_b = cross(cp.anchor_b, t_vec);
+      const Q32 k_tangent = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rt_a * rt_a +
+                            cc.inv_inertia_b * rt_b * rt_b;
+      cp.tangent_mass = k_tangent > Q32::zero() ? Q32::one() / k_tangent : Q32::zero();
+      cp.normal_impulse = c.normal_impulse[static_cast<size_t>(j)];
+      cp.tangent_impulse = c.tangent_impulse[static_cast<size_t>(j)];
+      cp.bounce_sub_step = -1;
+      cp.active_sub_step = -1;
+    }
+  }
+}
+
+void record_contact_approach(StepContext* context) {
+  BodyState* states = context->states;
+  BodyState dummy{};
+  for (int32_t i = 0; i < context->constraint_count; ++i) {
+    ContactConstraint& cc = context->constraints[i];
+    const BodyState* a = body_state(states, cc.solver_a, &dummy);
+    const BodyState* b = body_state(states, cc.solver_b, &dummy);
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      ContactConstraintPoint& cp = cc.points[j];
+      const Vec2 dv = point_velocity(b->linear_velocity, b->angular_velocity, cp.anchor_b) -
+                      point_velocity(a->linear_velocity, a->angular_velocity, cp.anchor_a);
+      cp.approach_velocity = dot(dv, cc.normal);
+    }
+  }
+}
+
+void warm_start_contacts(StepContext* context) {
+  BodyState* states = context->states;
+  BodyState dummy{};
+  const int32_t previous = context->sub_step_index - 1;
+  for (int32_t i = 0; i < context->constraint_count; ++i) {
+    ContactConstraint& cc = context->constraints[i];
+    BodyState* a = body_state(states, cc.solver_a, &dummy);
+    BodyState* b = body_state(states, cc.solver_b, &dummy);
+    const Vec2 n = cc.normal, t = right_perp(n);
+    Vec2 va = a->linear_velocity, vb = b->linear_velocity;
+    Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      ContactConstraintPoint& cp = cc.points[j];
+      if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
+      const Vec2 p = cp.normal_impulse * n + cp.tangent_impulse * t;
+      wa -= cc.inv_inertia_a * cross(cp.anchor_a, p);
+      va = mul_sub(va, cc.inv_mass_a, p);
+      wb += cc.inv_inertia_b * cross(cp.anchor_b, p);
+      vb = mul_add(vb, cc.inv_mass_b, p);
+    }
+    a->linear_velocity = va;
+    a->angular_velocity = wa;
+    b->linear_velocity = vb;
+    b->angular_velocity = wb;
+  }
+}
+
+namespace {
+
+/// One pass over one constraint. use_bias: the biased solve (latches
+/// bounces, soft push); otherwise a relax pass.
+void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+  BodyState dummy_a{}, dummy_b{};
+  BodyState* a = body_state(context->states, cc.solver_a, &dummy_a);
+  BodyState* b = body_state(context->states, cc.solver_b, &dummy_b);
+  const int32_t k = context->sub_step_index;
+  const Q32 h = context->h;
+  const Vec2 n = cc.normal, t = right_perp(n);
+  const Q32 ma = cc.inv_mass_a, ia = cc.inv_inertia_a, mb = cc.inv_mass_b, ib = cc.inv_inertia_b;
+  Vec2 va = a->linear_velocity, vb = b->linear_velocity;
+  Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+  const Vec2 dc = b->center - a->center;
+  bool skip[2] = {false, false};
+
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    const Vec2 d = dc + (rotate(b->rotation, cp.local_b) - rotate(a->rotation, cp.local_a));
+    const Q32 s = dot(d, n) + cp.adjusted_separation;
+    const bool touching = s <= Q32::zero();
+    const bool active = touching || s + h * (cp.approach_velocity + cc.kick) < Q32::zero();
+    if (use_bias) {
+      if (active) {
+        cp.active_sub_step = k;
+        if (cc.restitution > Q32::zero() && cp.approach_velocity < -context->restitution_threshold &&
+            cp.bounce_sub_step != k) {
+          cp.bounce_sub_step = k;
+          cp.bounce_velocity = -(cc.restitution * cp.approach_velocity);
+          if (cc.solver_a >= 0) context->bounce_marks[cc.solver_a] = k;
+          if (cc.solver_b >= 0) context->bounce_marks[cc.solver_b] = k;
+          context->bounced_this_sub_step = true;
+        }
+      }
+    }
+    const bool bouncing = cp.bounce_sub_step == k;
+    if (!use_bias && !bouncing &&
+        (!touching || (cp.active_sub_step != k && cp.normal_impulse == Q32::zero()))) {
+      skip[j] = true;  // relax gate: speculative, or idle this sub-step
+      continue;
+    }
+    Q32 bias = Q32::zero();
+    Q32 mass = cp.normal_mass;
+    Q32 impulse_scale = Q32::zero();
+    if (bouncing) {
+      bias = -cp.bounce_velocity;
+    } else if (!touching) {
+      bias = s * context->inv_h;  // speculative: only stop it reaching the surface
+    } else if (use_bias) {
+      bias = max(cc.softness.bias_rate * s, -context->max_push_speed);
+      mass = cp.soft_normal_mass;
+      impulse_scale = cc.softness.impulse_scale;
+    }
+    const Vec2 dv = point_velocity(vb, wb, cp.anchor_b) - point_velocity(va, wa, cp.anchor_a);
+    const Q32 vn = dot(dv, n);
+    Q32 impulse = -(mass * (vn + bias)) - impulse_scale * cp.normal_impulse;
+    if (use_bias && !bouncing && !touching && !active) impulse = min(impulse, Q32::zero());
+    const Q32 accumulated = max(cp.normal_impulse + impulse, Q32::zero());
+    impulse = accumulated - cp.normal_impulse;
+    cp.normal_impulse = accumulated;
+    const Vec2 p = impulse * n;
+    va = mul_sub(va, ma, p);
+    wa -= ia * cross(cp.anchor_a, p);
+    vb = mul_add(vb, mb, p);
+    wb += ib * cross(cp.anchor_b, p);
+  }
+
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    if (skip[j]) continue;
+    ContactConstraintPoint& cp = cc.points[j];
+    const Vec2 dv = point_velocity(vb, wb, cp.anchor_b) - point_velocity(va, wa, cp.anchor_a);
+    const Q32 vt = dot(dv, t);
+    const Q32 max_friction = cc.friction * cp.normal_impulse;
+    const Q32 accumulated = clamp(cp.tangent_impulse - cp.tangent_mass * vt, -max_friction, max_friction);
+    const Q32 impulse = accumulated - cp.tangent_impulse;
+    cp.tangent_impulse = accumulated;
+    const Vec2 p = impulse * t;
+    va = mul_sub(va, ma, p);
+    wa -= ia * cross(cp.anchor_a, p);
+    vb = mul_add(vb, mb, p);
+    wb += ib * cross(cp.anchor_b, p);
+  }
+
+  a->linear_velocity = va;
+  a->angular_velocity = wa;
+  b->linear_velocity = vb;
+  b->angular_velocity = wb;
+}
+
+}  // namespace
+
+void solve_contacts(StepContext* context) {
+  context->bounced_this_sub_step = false;
+  for (int32_t i = 0; i < context->constraint_count; ++i) solve_constraint(context->constraints[i], context, true);
+}
+
+void relax_contacts(StepContext* context) {
+  for (int32_t i = 0; i < context->constraint_count; ++i) solve_constraint(context->constraints[i], context, false);
+  if (!context->bounced_this_sub_step) return;
+  const int32_t k = context->sub_step_index;
+  const int32_t* marks = context->bounce_marks;
+  for (int32_t pass = 0; pass < 2; ++pass) {
+    for (int32_t i = 0; i < context->constraint_count; ++i) {
+      ContactConstraint& cc = context->constraints[i];
+      const bool marked = (cc.solver_a >= 0 && marks[cc.solver_a] == k) || (cc.solver_b >= 0 && marks[cc.solver_b] == k);
+      if (marked) solve_constraint(cc, context, false);
+    }
+  }
+}
+
+void store_contact_impulses(World* world, StepContext* context) {
+  const int32_t last = context->sub_step_count - 1;
+  for (int32_t i = 0; i < context->constraint_count; ++i) {
+    const ContactConstraint& cc = context->constraints[i];
+    Contact& c = world->contacts[static_cast<size_t>(cc.contact_index)];
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      const ContactConstraintPoint& cp = cc.points[j];
+      c.normal_impulse[static_cast<size_t>(j)] = cp.bounce_sub_step == last ? Q32::zero() : cp.normal_impulse;
+      c.tangent_impulse[static_cast<size_t>(j)] = cp.tangent_impulse;
+    }
+  }
+  Arena* arena = &world->arena;
+  arena_free(arena, context->bounce_marks);
+  arena_free(arena, context->constraints);
+  context->bounce_marks = nullptr;
+  context->constraints = nullptr;
+  context->constraint_count = 0;
+}
+
+}  // namespace tandem
