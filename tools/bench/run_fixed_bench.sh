@@ -109,7 +109,9 @@ ctx = data.get("context", {})
 print(f"- Result checksum (Q32.32 + Q16.16 outputs, FNV-1a): {ctx.get('checksum', '?')}")
 print("- libfixmath: Debian libfixmath-dev (liblibfixmath.a), built without optimisation (upstream's CMakeLists "
       "overwrites CMAKE_C_FLAGS), with its default options: sin/atan2 result caches on, overflow checks on, "
-      "rounding on, Taylor-series sin. Calls into it are not inlined.\n")
+      "rounding on, Taylor-series sin. Calls into it are not inlined.")
+print("- Google Benchmark's \"Library was built as DEBUG\" warning is about Debian's libbenchmark itself, "
+      "not about the code under test.\n")
 print(f"## Time per operation (ns, {stat})\n")
 print("Scalar throughput over pre-generated seeded inputs (every result goes to benchmark::DoNotOptimize), "
       "except the latency row. Inputs: mul ±100, div ±1000 / ±[1, 1000), sqrt [0, 10000), angles ±2π, "
