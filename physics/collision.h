@@ -139,6 +139,19 @@ struct Hull {
 /// is empty (count 0).
 GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull);
 
+/// Builds the one-sided segments of a chain from its vertices (local, m).
+/// Open chain (loop = false): points[0] and points[count−1] are ghost
+/// vertices only, so count ≥ 4 gives count − 3 segments (as Box2D v3); a body
+/// sliding off either end meets no invisible wall. Loop: count ≥ 3 gives
+/// count segments, the last joining points[count−1] to points[0]. Solid side:
+/// for a counter-clockwise loop, the inside; collisions happen on the right of
+/// each segment's direction. Rejects (with a message naming the vertex)
+/// too few points, and consecutive vertices closer than k_linear_slop.
+/// Writes at most `capacity` segments to out_segments and the count to
+/// *out_count; the chain_id of each segment is set to `chain_id`.
+GeometryStatus make_chain_segments(const Vec2* points, int32_t count, bool loop, int32_t chain_id,
+                                   ChainSegment* out_segments, int32_t capacity, int32_t* out_count);
+
 /// Makes a polygon from a hull with an optional rounding radius (≥ 0):
 /// checks the hull (3…8 vertices, strictly convex, CCW, in range, area) and
 /// computes the unit normals and the area centroid (within 1 raw unit). On
