@@ -18,7 +18,7 @@
 # whose configure or compile fails counts as one failed test (so a broken
 # build never reads as "0 failed"). Exit status 0 only if everything passed.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 1
 
 all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x)
 clean=0

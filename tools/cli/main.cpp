@@ -13,6 +13,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "fixed/fixed.h"
 #include "fixed/fixed_math.h"
 #include "fixed/vec2.h"
+#include "physics/tandem.h"
 
 namespace {
 
@@ -74,6 +76,72 @@ uint64_t determinism_fingerprint(int count) {
   return fp.h;
 }
 
+
+// Total energy ½mv² + ½Iω² + m·g·h of one body (a report: doubles allowed here).
+double body_energy(BodyId b, double g) {
+  const Vec2 v = body_linear_velocity(b);
+  const double m = body_mass(b).to_double(), w = body_angular_velocity(b).to_double();
+  const double vx = v.x.to_double(), vy = v.y.to_double();
+  return 0.5 * m * (vx * vx + vy * vy) + 0.5 * body_rotational_inertia(b).to_double() * w * w +
+         m * g * body_world_center(b).y.to_double();
+}
+
+// Section 5 of the demo: two small scenes on the physics module.
+void run_physics_preview() {
+  const Q32 dt = Q32::from_ratio(1, 60);
+  WorldId world = create_world(default_world_def()).value;
+  BodyId ground = create_body(world, default_body_def()).value;
+  Polygon ground_box;
+  make_offset_box(40_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
+  create_polygon_shape(ground, default_shape_def(), ground_box);
+
+  // An elastic ball dropped from 10 m (the report's accuracy test).
+  BodyDef ball_def = default_body_def();
+  ball_def.type = BodyType::dynamic_body;
+  ball_def.position = Vec2{Q32(-10), 10_q32};
+  BodyId ball = create_body(world, ball_def).value;
+  ShapeDef bouncy = default_shape_def();
+  bouncy.restitution = 1_q32;
+  bouncy.friction = 0_q32;
+  create_circle_shape(ball, bouncy, Circle{Vec2{}, 0.5_q32});
+
+  // A stack of ten 1 m boxes.
+  std::vector<BodyId> stack;
+  Polygon box;
+  make_box(0.5_q32, 0.5_q32, &box);
+  for (int i = 0; i < 10; ++i) {
+    BodyDef d = default_body_def();
+    d.type = BodyType::dynamic_body;
+    d.position = Vec2{Q32(5), Q32::from_ratio(2 * i + 1, 2)};
+    stack.push_back(create_body(world, d).value);
+    create_polygon_shape(stack.back(), default_shape_def(), box);
+  }
+  const double e0 = body_energy(ball, 10.0);
+  double e_min = e0, e_max = e0;
+  const int ticks = 60 * 60;
+  Fingerprint fp;
+  for (int tick = 1; tick <= ticks; ++tick) {
+    const StepResult r = world_step(world, dt);
+    if (!r.ok()) {
+      std::printf("  step %d failed: %s\n", tick, r.status.message.c_str());
+      break;
+    }
+    const double e = body_energy(ball, 10.0);
+    e_min = std::min(e_min, e);
+    e_max = std::max(e_max, e);
+    fp.add(body_position(ball).y.raw);
+    fp.add(body_position(stack.back()).x.raw);
+  }
+  const Vec2 top = body_position(stack.back());
+  std::printf("  %d ticks of 1/60 s (one simulated minute), 4 sub-steps, soft contacts:\n", ticks);
+  std::printf("  - ball, restitution 1, dropped from 10 m: energy now %.4f of the start (range %.4f .. %.4f)\n",
+              body_energy(ball, 10.0) / e0, e_min / e0, e_max / e0);
+  std::printf("  - stack of 10 boxes: top box centre at (%s, %s) m (started at (5, 9.5))\n",
+              to_string(top.x).substr(0, 12).c_str(), to_string(top.y).substr(0, 12).c_str());
+  std::printf("  - fingerprint of both trajectories: 0x%016" PRIx64 "\n", fp.h);
+  destroy_world(world);
+}
+
 void print_rule(char c = '-') {
   std::string line(96, c);
   std::printf("%s\n", line.c_str());
@@ -85,11 +153,11 @@ int run_demo() {
 
   std::printf("1. Decimal text converts exactly, never through a double (round to nearest, ties away from zero)\n");
   print_rule();
-  std::printf("  %-8s %-22s %-44s %s\n", "text", "Q32.32 raw", "stored value, exact decimal", "error");
+  std::printf("  %-20s %-14s %-40s %s\n", "text", "Q32.32 raw", "stored value, exact decimal", "error");
   for (const char* text : {"0.1", "1.5", "-2.75", "0.016666666666666666", "3.14159265358979"}) {
     const auto p = parse_q32(text);
     const long double truth = std::strtold(text, nullptr);
-    std::printf("  %-8.8s %-22" PRId64 " %-44s %+.3Lf raw\n", text, p.value.raw, to_string(p.value).c_str(),
+    std::printf("  %-20s %-14" PRId64 " %-40s %+.3Lf raw\n", text, p.value.raw, to_string(p.value).c_str(),
                 raw_error(p.value, truth));
   }
   std::printf("\n2. Functions against their exact values (long double oracle), error in raw units\n");
@@ -142,6 +210,12 @@ int run_demo() {
   std::printf("  Fingerprint of %d evaluations each of *, /, sqrt, sincos, atan2, length: 0x%016" PRIx64 "\n", n,
               determinism_fingerprint(n));
   std::printf("  The test suite checks values like this one on x86-64, i686 (no __int128) and s390x (big-endian).\n");
+
+  std::printf("\n5. Physics preview (physics/): integer-only soft-step solver\n");
+  print_rule();
+  run_physics_preview();
+  std::printf("\nNext: replay files, per-tick hashes and the full command line (run, record, verify, render) land\n"
+              "with their issues; see README.md.\n");
   return 0;
 }
 
