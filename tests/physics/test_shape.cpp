@@ -388,7 +388,7 @@ TEST_CASE("ray casts with known answers", "[physics]") {
 
 TEST_CASE("ray casts agree with shape_distance on random shapes", "[physics]") {
   std::mt19937_64 rng(0x52415953u);
-  const int cases = 8000 / k_scale;
+  const int cases = k_scale == 1 ? 100000 : 4000;  // the issue asks for 100,000 random cases
   const Q32 lift = q(1e-5L);  // 10 µm off the surface along the normal
   long double worst_surface = 0, worst_lift = 0;
   int hits = 0, misses = 0;
