@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "physics/island.h"
 #include "physics/world.h"
 
 namespace tandem {
@@ -82,11 +83,6 @@ bool check_closed(const char* function, const std::string& what, Q32 v, Q32 lo, 
   return false;
 }
 
-void wake(Body* body) {
-  body->awake = true;
-  body->sleep_time = Q32::zero();
-}
-
 /// A velocity clamped to the world's maximum speed (after a centre shift).
 Vec2 clamp_speed(Vec2 v, Q32 max_speed) {
   if (!length_exceeds(v, max_speed)) return v;
@@ -131,7 +127,7 @@ Status apply_force_impl(BodyId id, const char* function, Vec2 force, Vec2 point,
   }
   sim.force = f;
   sim.torque = torque;
-  wake(&body);
+  wake_body_island(w, i);
   return s;
 }
 
@@ -158,7 +154,7 @@ Status apply_impulse_impl(BodyId id, const char* function, Vec2 impulse, Q32 ang
   if (!check_angular_speed(function, "the angular velocity this impulse gives " + describe(id), omega, &s)) return s;
   sim.linear_velocity = v;
   sim.angular_velocity = omega;
-  wake(&body);
+  wake_body_island(w, i);
   return s;
 }
 
@@ -324,7 +320,12 @@ Status update_body_mass(World* w, int32_t index, const char* function) {
   BodyMass m{};
   Status s = compute_body_mass(*w, index, body.type, body.fixed_rotation, k_null_index, Q32::zero(), nullptr,
                                std::string(function) + ": " + describe(make_body_id(*w, index)), &m);
-  if (s.ok()) apply_body_mass(w, index, m);
+  if (s.ok()) {
+    apply_body_mass(w, index, m);
+    // Shapes added, removed or re-massed: wake the body and what touches it
+    // (a lone sleeper stays asleep, so scenes can be built asleep; island.h).
+    wake_body_and_touching(w, index, false);
+  }
   return s;
 }
 
@@ -419,6 +420,7 @@ Result<BodyId> create_body(WorldId world_id, const BodyDef& def) {
   }
   const Status mass = update_body_mass(w, index, fn);  // no shapes yet: cannot fail
   TANDEM_ASSERT(mass.ok());
+  if (!body.awake && body.type != BodyType::static_body) put_body_to_sleep(w, index);
   result.value = make_body_id(*w, index);
   return result;
 }
@@ -428,6 +430,8 @@ Status destroy_body(BodyId id) {
   int32_t i = 0;
   Status s = resolve_body(id, "destroy_body", true, WorldId{}, &w, &i);
   if (!s.ok()) return s;
+  // Whatever touched it (and its own island) wakes: its support is gone.
+  wake_body_and_touching(w, i, true);
   // Shapes go first, in ascending shape index.
   while (body_at(w, i).head_shape != k_null_index) remove_shape(w, body_at(w, i).head_shape);
   body_at(w, i) = Body{};
@@ -471,6 +475,7 @@ Status body_set_type(BodyId id, BodyType type) {
                                  std::string(fn) + ": " + describe(id) + " as " + type_name(type), &m);
     if (!s.ok()) return s;
     BodySim& sim = sim_at(w, i);
+    wake_body_and_touching(w, i, true);  // its island and what touches it, under the old type
     body.type = type;
     sim.force = {};
     sim.torque = Q32::zero();
@@ -479,7 +484,7 @@ Status body_set_type(BodyId id, BodyType type) {
       sim.angular_velocity = Q32::zero();
     }
     apply_body_mass(w, i, m);
-    wake(&body);
+    wake_body_island(w, i);
     return s;
   });
 }
@@ -512,6 +517,7 @@ Status body_set_transform(BodyId id, Vec2 position, Rot rotation) {
     sim.transform = {position, rot_normalize(rotation)};
     sim.center = transform_point(sim.transform, sim.local_center);
     update_body_shape_bounds(w, i);
+    wake_body_and_touching(w, i, true);
     return s;
   });
 }
@@ -542,7 +548,7 @@ Status body_set_linear_velocity(BodyId id, Vec2 velocity) {
     }
     if (!check_speed(*w, fn, "velocity " + format_vec2(velocity) + " m/s", velocity, &s)) return s;
     sim_at(w, i).linear_velocity = velocity;
-    wake(&body);
+    wake_body_island(w, i);
     return s;
   });
 }
@@ -566,7 +572,7 @@ Status body_set_angular_velocity(BodyId id, Q32 angular_velocity) {
     if (body.fixed_rotation) return invalid_argument(fn, describe(id), "has fixed rotation");
     if (!check_angular_speed(fn, "angular velocity", angular_velocity, &s)) return s;
     sim_at(w, i).angular_velocity = angular_velocity;
-    wake(&body);
+    wake_body_island(w, i);
     return s;
   });
 }
@@ -609,7 +615,7 @@ Status body_apply_torque(BodyId id, Q32 torque, bool wake_body) {
     return s;
   }
   sim.torque = t;
-  wake(&body);
+  wake_body_island(w, i);
   return s;
 }
 
@@ -738,6 +744,7 @@ Status body_enable(BodyId id) {
     if (!body.enabled) {
       body.enabled = true;
       update_body_shape_bounds(w, i);
+      wake_body_island(w, i);
     }
     return Status{};
   });
@@ -745,6 +752,7 @@ Status body_enable(BodyId id) {
 
 Status body_disable(BodyId id) {
   return set_body(id, "body_disable", [&](World* w, int32_t i) {
+    if (body_at(w, i).enabled) wake_body_and_touching(w, i, true);
     body_at(w, i).enabled = false;
     sim_at(w, i).force = {};
     sim_at(w, i).torque = Q32::zero();
@@ -764,15 +772,9 @@ Status body_set_awake(BodyId id, bool awake) {
     Body& body = body_at(w, i);
     if (body.type == BodyType::static_body) return Status{};
     if (awake) {
-      wake(&body);
+      wake_body_island(w, i);
     } else {
-      BodySim& sim = sim_at(w, i);
-      body.awake = false;
-      body.sleep_time = Q32::zero();
-      sim.linear_velocity = {};
-      sim.angular_velocity = Q32::zero();
-      sim.force = {};
-      sim.torque = Q32::zero();
+      put_body_to_sleep(w, i);  // an island of its own (island.h)
     }
     return Status{};
   });
@@ -786,7 +788,7 @@ Status body_enable_sleep(BodyId id, bool enable) {
   return set_body(id, "body_enable_sleep", [&](World* w, int32_t i) {
     Body& body = body_at(w, i);
     body.enable_sleep = enable;
-    if (!enable) wake(&body);
+    if (!enable) wake_body_island(w, i);
     return Status{};
   });
 }

@@ -26,8 +26,8 @@
 // a wide (SoA) solver can transpose BodyState by solver index.
 //
 // Sizes on x86-64 (asserted as upper bounds below, printed by
-// tests/physics/test_body.cpp): Body 56 bytes, BodySim 152, BodyState 56,
-// SolverBodyParams 56.
+// tests/physics/test_body.cpp): Body 64 bytes (with the sleep fields),
+// BodySim 152, BodyState 56, SolverBodyParams 56.
 #pragma once
 
 #include <cstdint>
@@ -56,7 +56,8 @@ struct Body {
   int32_t shape_count = 0;
   Q32 mass;                           ///< kg; 0 for static and kinematic bodies
   Q32 rotational_inertia;             ///< kg·m² about the centre of mass (before fixed rotation)
-  Q32 sleep_time;                     ///< s at rest (sleep task)
+  Q32 sleep_time;                     ///< s still, Q32.32, capped at k_time_to_sleep (island.h)
+  int32_t sleep_island = k_null_index;  ///< while asleep: the island's root body index (island.h)
   uint64_t user_data = 0;
   bool enable_sleep = true;
   bool awake = true;                  ///< meaningless for static bodies

@@ -18,6 +18,10 @@
 //      (scalar Gauss-Seidel); impulses go back to the contacts by index.
 //   Nothing here depends on addresses, hash order or thread timing.
 //
+// Sleeping: a contact whose two bodies are both not simulated (asleep,
+// static, disabled) is carried over unchanged — no narrow phase, impulses
+// kept — so a sleeping island costs only its broad-phase pairs (island.h).
+//
 // Memory: World::contacts and World::contact_scratch are swapped each step
 // (the new list is built in the scratch vector); both only grow, so after the
 // first steps of a scene no allocation happens here.
@@ -97,6 +101,13 @@ void update_contacts(World* world) {
     c.body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
     c.body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
     c.flags = old != nullptr ? old->flags : 0;
+    if (old != nullptr && !body_is_simulated(world->bodies[static_cast<size_t>(c.body_a)]) &&
+        !body_is_simulated(world->bodies[static_cast<size_t>(c.body_b)])) {
+      // Neither body moves (asleep, static or disabled): the manifold and the
+      // impulses are still valid; keep them for when the island wakes.
+      next.push_back(*old);
+      continue;
+    }
     update_manifold(*world, &c, old);
     next.push_back(c);
   }

@@ -15,6 +15,7 @@ WorldDef default_world_def() {
   def.joint_hertz = 60_q32;
   def.joint_damping_ratio = 2_q32;
   def.restitution_threshold = 1_q32;
+  def.hit_event_threshold = 1_q32;
   // 400 m/s: 6.7 m per step at 60 Hz, faster than anything a game throws,
   // and well inside k_max_linear_speed.
   def.max_linear_speed = 400_q32;
@@ -54,6 +55,7 @@ ShapeDef default_shape_def() {
   def.filter = Filter{};
   def.user_data = 0;
   def.is_sensor = false;
+  def.enable_hit_events = false;
   def.internal_cookie = k_def_cookie;
   return def;
 }

@@ -49,6 +49,8 @@ struct WorldDef {
   Q32 joint_damping_ratio;         ///< joint damping, dimensionless; default 2; [0, k_max_damping_ratio]
   Q32 restitution_threshold;       ///< approach speed below which restitution is ignored, m/s; default 1;
                                    ///< [0, max_linear_speed]
+  Q32 hit_event_threshold;         ///< approach speed above which a contact reports a hit event, m/s;
+                                   ///< default 1; [0, max_linear_speed] (events.h)
   Q32 max_linear_speed;            ///< bodies are slowed to this speed each sub-step, m/s; default 400;
                                    ///< (0, k_max_linear_speed]
   AABB bounds;                     ///< bodies must start and stay inside, m; default ±k_max_world_coordinate;
@@ -100,7 +102,8 @@ struct ShapeDef {
   Q32 density;                  ///< kg/m²; default 1; (0, k_max_density]
   Filter filter;                ///< default: category 1, mask all, group 0
   uint64_t user_data = 0;       ///< any integer, for the application; default 0
-  bool is_sensor = false;       ///< detects overlap, never pushes (sensor events come later); default false
+  bool is_sensor = false;       ///< detects overlap, never pushes; reports sensor events (events.h); default false
+  bool enable_hit_events = false;  ///< report hit events for this shape's contacts (events.h); default false
   int32_t internal_cookie = 0;  ///< set by default_shape_def(); do not touch
 };
 

@@ -43,6 +43,7 @@ struct Shape {
   uint64_t user_data = 0;
   AABB aabb;                 ///< world bounds, m; updated at the end of each step and on teleport
   bool is_sensor = false;
+  bool enable_hit_events = false;  ///< events.h
 };
 
 static_assert(sizeof(Shape) <= 120);

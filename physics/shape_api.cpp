@@ -224,6 +224,7 @@ Result<ShapeId> create_shape(BodyId body_id, const ShapeDef& def, const ShapeGeo
   shape.filter = def.filter;
   shape.user_data = def.user_data;
   shape.is_sensor = def.is_sensor;
+  shape.enable_hit_events = def.enable_hit_events;
   w->shape_geometries[static_cast<size_t>(index)] = geometry;
   link_shape(w, &w->bodies[static_cast<size_t>(b)], index);
   shape.aabb = compute_shape_aabb(geometry, w->body_sims[static_cast<size_t>(b)].transform);

@@ -474,3 +474,7 @@ uint64_t shape_user_data(ShapeId shape);
 Status shape_set_user_data(ShapeId shape, uint64_t user_data);
 
 }  // namespace tandem
+
+// The event and query APIs live in their own headers, part of this one.
+#include "physics/events.h"
+#include "physics/query.h"

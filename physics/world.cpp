@@ -79,6 +79,10 @@ Status validate_world_def(const WorldDef& def, const char* function) {
                     "m/s", &s)) {
     return s;
   }
+  if (!check_closed(function, "hit_event_threshold", def.hit_event_threshold, Q32::zero(), def.max_linear_speed,
+                    "m/s", &s)) {
+    return s;
+  }
   const AABB& b = def.bounds;
   const Q32 m = k_max_world_coordinate;
   if (!(b.lower.x < b.upper.x && b.lower.y < b.upper.y) || b.lower.x < -m || b.lower.y < -m || b.upper.x > m ||
@@ -334,13 +338,20 @@ Status world_set_restitution_threshold(WorldId id, Q32 threshold) {
                          [&](WorldDef* d) { d->restitution_threshold = threshold; });
 }
 
+Status world_set_hit_event_threshold(WorldId id, Q32 threshold) {
+  return change_settings(id, "world_set_hit_event_threshold",
+                         [&](WorldDef* d) { d->hit_event_threshold = threshold; });
+}
+
 Status world_set_max_linear_speed(WorldId id, Q32 max_linear_speed) {
   return change_settings(id, "world_set_max_linear_speed",
                          [&](WorldDef* d) { d->max_linear_speed = max_linear_speed; });
 }
 
 Status world_enable_sleep(WorldId id, bool enable) {
-  return change_settings(id, "world_enable_sleep", [&](WorldDef* d) { d->enable_sleep = enable; });
+  Status s = change_settings(id, "world_enable_sleep", [&](WorldDef* d) { d->enable_sleep = enable; });
+  if (s.ok() && !enable) wake_all_bodies(find_world(id));
+  return s;
 }
 
 Status world_set_user_data(WorldId id, uint64_t user_data) {
@@ -414,6 +425,8 @@ StepResult world_step(WorldId id, Q32 time_step) {
 
   // The stages, in order (world.h explains each).
   stage_update_contacts(world, context);
+  stage_wake_touched(world, context);  // sleepers touched by awake bodies (island.cpp)
+  events_after_contacts(world);  // start transforms and hit candidates (events.cpp)
   stage_prepare_bodies(world, context);
   stage_prepare_contacts(world, context);
   for (int32_t i = 0; i < n; ++i) {
@@ -428,11 +441,14 @@ StepResult world_step(WorldId id, Q32 time_step) {
   stage_restitution(world, context);
   stage_store_impulses(world, context);
   stage_finalize_bodies(world, context);
+  stage_update_sleep(world, context);  // sleep timers and islands (island.cpp)
+  events_after_step(world);  // contact, hit, sensor and move events (events.cpp)
 
   // The arena is empty again; let it grow (outside the step's timing) if this
   // step spilled to the heap.
   arena_grow(&world->arena);
   reserve_contact_headroom(world);
+  events_reserve_headroom(world);
   world->last_solver_body_count = context->solver_body_count;
   ++world->step_count;
   world->locked = false;

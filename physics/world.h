@@ -12,6 +12,7 @@
 // contact_solver.cpp:
 //
 //   update_contacts            broad-phase pairs → contacts → manifolds (contact.cpp)
+//   wake_touched               wake sleeping islands touched by awake bodies (island.cpp)
 //   prepare_bodies             gather simulated bodies into solver arrays (arena)
 //   prepare_contacts           contact constraints from manifolds (contact_solver.cpp)
 //   for each sub-step (h = dt / n):
@@ -24,6 +25,7 @@
 //   restitution                empty: bounces are solved inside the sub-steps (contact_solver.cpp)
 //   store_impulses             for warm starting; frees the constraints
 //   finalize_bodies            write back, clear forces, leave-bounds check, shape AABBs
+//   update_sleep               sleep timers, union-find islands, islands to sleep (island.cpp)
 //
 // The issue lists "integrate velocities → update contacts → solve → ...": with
 // sub-steps, velocity integration happens inside the sub-step loop, so
@@ -39,8 +41,10 @@
 #include "physics/broad_phase.h"
 #include "physics/contact.h"
 #include "physics/contact_solver.h"
+#include "physics/events.h"
 #include "physics/defs.h"
 #include "physics/id_pool.h"
+#include "physics/island.h"
 #include "physics/ids.h"
 #include "physics/shape.h"
 #include "physics/tandem.h"
@@ -95,6 +99,7 @@ struct World {
   BroadPhase broad_phase;            ///< pair buffers (broad_phase.h)
   std::vector<Contact> contacts;     ///< sorted by (shape_a, shape_b) (contact.h)
   std::vector<Contact> contact_scratch;  ///< the next list is built here, then swapped
+  EventState events;                 ///< the last step's events and their buffers (events.h)
 
   Arena arena;                       ///< per-step scratch
   StepContext context;               ///< the current / last step

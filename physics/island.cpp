@@ -1,0 +1,177 @@
+// island.cpp — sleep timers, per-step union-find islands, sleeping and
+// waking (design in island.h).
+//
+// Determinism: every loop runs in ascending body index or in contact order
+// (sorted by shape-pair key); union always makes the lower root the parent,
+// so the root of a set is its lowest body index whatever the union order;
+// path halving only shortens paths. Nothing depends on addresses.
+#include "physics/island.h"
+
+#include "physics/world.h"
+
+namespace tandem {
+
+namespace {
+
+bool is_dynamic_simulated(const Body& b) { return b.type == BodyType::dynamic_body && body_is_simulated(b); }
+
+/// The body is asleep (non-static, enabled, not awake).
+bool is_sleeping(const Body& b) { return b.type != BodyType::static_body && b.enabled && !b.awake; }
+
+/// An awake body that wakes sleepers it touches: dynamic, or kinematic and
+/// moving in the last step (or just woken).
+bool wakes_others(const Body& b) {
+  if (!body_is_simulated(b)) return false;
+  return b.type == BodyType::dynamic_body || b.sleep_time == Q32::zero();
+}
+
+void wake_one(Body* b) {
+  b->awake = true;
+  b->sleep_time = Q32::zero();
+  b->sleep_island = k_null_index;
+}
+
+/// Root of `i` with path halving; parents always have lower indices.
+int32_t find_root(int32_t* parent, int32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+}  // namespace
+
+int32_t wake_touching_count(World* world, int32_t body_index);
+
+void wake_body_island(World* world, int32_t body_index) {
+  Body& body = world->bodies[static_cast<size_t>(body_index)];
+  if (body.type == BodyType::static_body) return;
+  if (body.awake || body.sleep_island == k_null_index) {
+    wake_one(&body);
+    return;
+  }
+  const int32_t island = body.sleep_island;
+  const int32_t end = id_pool_capacity(world->body_pool);
+  for (int32_t b = 0; b < end; ++b) {
+    Body& other = world->bodies[static_cast<size_t>(b)];
+    if (!id_pool_is_alive(world->body_pool, b) || other.awake || other.sleep_island != island) continue;
+    wake_one(&other);
+  }
+  wake_one(&body);
+}
+
+void wake_touching(World* world, int32_t body_index) {
+  (void)wake_touching_count(world, body_index);
+}
+
+void wake_body_and_touching(World* world, int32_t body_index, bool wake_lone_sleeper) {
+  const int32_t touching = wake_touching_count(world, body_index);
+  if (touching > 0 || wake_lone_sleeper || world->bodies[static_cast<size_t>(body_index)].awake) {
+    wake_body_island(world, body_index);
+  }
+}
+
+int32_t wake_touching_count(World* world, int32_t body_index) {
+  int32_t touching = 0;
+  for (const Contact& c : world->contacts) {
+    if ((c.flags & k_contact_touching) == 0) continue;
+    int32_t other = k_null_index;
+    if (c.body_a == body_index) other = c.body_b;
+    if (c.body_b == body_index) other = c.body_a;
+    if (other == k_null_index || other == body_index) continue;
+    ++touching;
+    if (!id_pool_is_alive(world->body_pool, other)) continue;
+    if (is_sleeping(world->bodies[static_cast<size_t>(other)])) wake_body_island(world, other);
+  }
+  return touching;
+}
+
+void put_body_to_sleep(World* world, int32_t body_index) {
+  Body& body = world->bodies[static_cast<size_t>(body_index)];
+  BodySim& sim = world->body_sims[static_cast<size_t>(body_index)];
+  body.awake = false;
+  body.sleep_time = Q32::zero();
+  body.sleep_island = body_index;
+  sim.linear_velocity = {};
+  sim.angular_velocity = Q32::zero();
+  sim.force = {};
+  sim.torque = Q32::zero();
+}
+
+void wake_all_bodies(World* world) {
+  const int32_t end = id_pool_capacity(world->body_pool);
+  for (int32_t b = 0; b < end; ++b) {
+    Body& body = world->bodies[static_cast<size_t>(b)];
+    if (!id_pool_is_alive(world->body_pool, b) || body.type == BodyType::static_body) continue;
+    wake_one(&body);
+  }
+}
+
+void stage_wake_touched(World* world, StepContext* context) {
+  (void)context;
+  for (const Contact& c : world->contacts) {
+    if ((c.flags & k_contact_touching) == 0) continue;
+    Body& a = world->bodies[static_cast<size_t>(c.body_a)];
+    Body& b = world->bodies[static_cast<size_t>(c.body_b)];
+    if (is_sleeping(a) && wakes_others(b)) wake_body_island(world, c.body_a);
+    if (is_sleeping(b) && wakes_others(a)) wake_body_island(world, c.body_b);
+  }
+}
+
+void stage_update_sleep(World* world, StepContext* context) {
+  const int32_t end = id_pool_capacity(world->body_pool);
+  const bool enabled = world->def.enable_sleep;
+  const Q32 dt = context->dt;
+
+  // 1. Timers of the bodies simulated this step (finalize may have disabled
+  //    some: they are skipped).
+  for (int32_t b = 0; b < end; ++b) {
+    Body& body = world->bodies[static_cast<size_t>(b)];
+    if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
+    const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
+    const bool still = enabled && body.enable_sleep && !length_exceeds(sim.linear_velocity, k_linear_sleep_tolerance) &&
+                       abs(sim.angular_velocity) <= k_angular_sleep_tolerance;
+    // sleep_time ≤ k_time_to_sleep and dt ≤ k_max_time_step: the sum fits.
+    body.sleep_time = still ? min(body.sleep_time + dt, k_time_to_sleep) : Q32::zero();
+  }
+  if (!enabled) return;
+
+  // 2. Union-find over touching contacts between two simulated dynamic bodies.
+  Arena* arena = &world->arena;
+  int32_t* parent = arena_allocate_array<int32_t>(arena, end, "island_parent");
+  uint8_t* blocked = arena_allocate_array<uint8_t>(arena, end, "island_blocked");
+  for (int32_t b = 0; b < end; ++b) {
+    parent[b] = b;
+    blocked[b] = 0;
+  }
+  for (const Contact& c : world->contacts) {
+    if ((c.flags & k_contact_touching) == 0) continue;
+    if (!is_dynamic_simulated(world->bodies[static_cast<size_t>(c.body_a)]) ||
+        !is_dynamic_simulated(world->bodies[static_cast<size_t>(c.body_b)])) {
+      continue;
+    }
+    const int32_t ra = find_root(parent, c.body_a), rb = find_root(parent, c.body_b);
+    if (ra < rb) parent[rb] = ra;
+    if (rb < ra) parent[ra] = rb;
+  }
+
+  // 3. An island may sleep when every body in it has been still long enough.
+  for (int32_t b = 0; b < end; ++b) {
+    const Body& body = world->bodies[static_cast<size_t>(b)];
+    if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
+    if (body.sleep_time < k_time_to_sleep) blocked[find_root(parent, b)] = 1;
+  }
+  for (int32_t b = 0; b < end; ++b) {
+    const Body& body = world->bodies[static_cast<size_t>(b)];
+    if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
+    const int32_t root = find_root(parent, b);
+    if (blocked[root] != 0) continue;
+    put_body_to_sleep(world, b);
+    world->bodies[static_cast<size_t>(b)].sleep_island = root;
+  }
+  arena_free(arena, blocked);
+  arena_free(arena, parent);
+}
+
+}  // namespace tandem
