@@ -55,7 +55,7 @@ struct WorldDef {
                                    ///< (0, k_max_linear_speed]
   AABB bounds;                     ///< bodies must start and stay inside, m; default ±k_max_world_coordinate;
                                    ///< must lie within ±k_max_world_coordinate with lower < upper
-  bool enable_sleep = true;        ///< let resting bodies sleep (the sleep task uses it); default true
+  bool enable_sleep = true;        ///< let resting islands sleep (0.5 s below 0.05 m/s and 2°/s); default true
   BroadPhaseKind broad_phase = BroadPhaseKind::naive;  ///< default naive
   uint64_t user_data = 0;          ///< any integer, for the application; default 0
   int32_t internal_cookie = 0;     ///< set by default_world_def(); do not touch

@@ -212,7 +212,7 @@ void events_after_step(World* w) {
         transforms_equal(now, e.start_transforms[static_cast<size_t>(i)])) {
       continue;
     }
-    e.body_move.push_back(BodyMoveEvent{make_body_id(*w, i), now, false});
+    e.body_move.push_back(BodyMoveEvent{make_body_id(*w, i), now, !w->bodies[static_cast<size_t>(i)].awake});
   }
 }
 

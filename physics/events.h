@@ -33,8 +33,8 @@
 //     destroyed shapes end at the next step, as for contacts. Sensors are
 //     not visitors of other sensors.
 //   * Move: a non-static live body whose transform after the step differs
-//     (any raw bit) from before it. fell_asleep is always false for now: the
-//     sleep task sets it.
+//     (any raw bit) from before it. fell_asleep is true for a body that moved in
+//     this step and ended it asleep (its island fell asleep).
 //
 // ORDER. Every list is sorted by a unique data key: contact begin, end and
 // hit events by (lower shape index, higher shape index) — shape_a is always
@@ -87,7 +87,7 @@ struct SensorEvent {
 struct BodyMoveEvent {
   BodyId body;
   Transform transform;      ///< the pose after the step
-  bool fell_asleep = false; ///< always false until the sleep task
+  bool fell_asleep = false; ///< the body moved this step and is now asleep
 };
 
 /// The contact events of the last step.

@@ -370,7 +370,8 @@ bool body_is_awake(BodyId body);
 Status body_set_awake(BodyId body, bool awake);
 /// True when the body may sleep; false for an invalid handle.
 bool body_is_sleep_enabled(BodyId body);
-/// Lets the body sleep or keeps it awake (the sleep task uses it).
+/// Lets the body sleep (default) or keeps it, and so its island, always awake;
+/// disabling wakes it.
 Status body_enable_sleep(BodyId body, bool enable);
 
 /// The body's user data; 0 for an invalid handle.

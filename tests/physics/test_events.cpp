@@ -380,3 +380,32 @@ TEST_CASE("a visitor destroyed inside a sensor ends its overlap at the next step
   REQUIRE(ev.begin.size() == 1);
   CHECK(ev.begin[0].visitor == outside);
 }
+
+TEST_CASE("move events say when a body fell asleep", "[physics][events][sleep]") {
+  ScopedWorld w;
+  BodyId ground = create_body(w.id, default_body_def()).value;
+  Polygon ground_box;
+  REQUIRE(make_offset_box(10_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok);
+  REQUIRE(create_polygon_shape(ground, default_shape_def(), ground_box).ok());
+  BodyDef bd = default_body_def();
+  bd.type = BodyType::dynamic_body;
+  bd.position = {0_q32, 1_q32};
+  const BodyId box = create_body(w.id, bd).value;
+  Polygon square;
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &square).ok);
+  REQUIRE(create_polygon_shape(box, default_shape_def(), square).ok());
+  int slept_at = -1, reported_at = -1;
+  for (int tick = 1; tick <= 300 && slept_at < 0; ++tick) {
+    REQUIRE(world_step(w.id, k_dt).ok());
+    for (const BodyMoveEvent& m : world_body_events(w.id).value.move) {
+      if (m.body == box && m.fell_asleep) reported_at = tick;
+    }
+    if (!body_is_awake(box)) slept_at = tick;
+  }
+  INFO("slept at tick " << slept_at << ", reported at tick " << reported_at);
+  REQUIRE(slept_at > 0);
+  CHECK(reported_at == slept_at);
+  // Asleep: no more move events for it.
+  REQUIRE(world_step(w.id, k_dt).ok());
+  CHECK(world_body_events(w.id).value.move.empty());
+}

@@ -57,3 +57,46 @@ TEST_CASE("README physics example runs and the ball keeps bouncing", "[physics][
   CHECK(y <= 10.1_q32);
   CHECK(readme_example() == y);  // and the same bits twice
 }
+
+namespace {
+void readme_events_example() {
+  WorldId world = create_world(default_world_def()).value;
+  BodyId ground = create_body(world, default_body_def()).value;
+  Polygon ground_box;
+  make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
+  create_polygon_shape(ground, default_shape_def(), ground_box);
+  BodyDef ball_def = default_body_def();
+  ball_def.type = BodyType::dynamic_body;
+  ball_def.position = Vec2{0_q32, 3_q32};
+  BodyId ball = create_body(world, ball_def).value;
+  ShapeDef ball_shape = default_shape_def();
+  ball_shape.enable_hit_events = true;
+  const ShapeId ball_shape_id = create_circle_shape(ball, ball_shape, Circle{Vec2{}, 0.5_q32}).value;
+  int begins = 0, hits = 0, slept = 0;
+  // --- README events example begins ---
+  for (int tick = 0; tick < 240; ++tick) {
+    world_step(world, Q32::from_ratio(1, 60));
+    ContactEvents contacts = world_contact_events(world).value;    // valid until the next step
+    for (const ContactBeginEvent& e : contacts.begin) { ++begins; (void)e.shape_a; }
+    for (const ContactHitEvent& e : contacts.hit)                   // approach speed above 1 m/s
+      std::printf("tick %d: hit at %s m/s\n", tick, to_string(e.approach_speed).substr(0, 6).c_str()), ++hits;
+    for (const BodyMoveEvent& e : world_body_events(world).value.move)
+      if (e.fell_asleep) ++slept;                                   // sleeping: 0.5 s below 0.05 m/s
+  }
+  RayHit hit = world_cast_ray_closest(world, Vec2{0_q32, 10_q32}, Vec2{0_q32, -20_q32}).value;
+  // hit.shape is the ball's shape; hit.point, hit.normal, hit.fraction
+  std::vector<ShapeId> found;
+  world_overlap_aabb(world, AABB{{Q32(-1), Q32(-1)}, {1_q32, 1_q32}}, QueryFilter{}, &found);  // id order
+  // --- README events example ends ---
+  CHECK(begins == 1);
+  CHECK(hits == 1);
+  CHECK(slept == 1);
+  CHECK(hit.hit);
+  CHECK(hit.shape == ball_shape_id);
+  CHECK(body_is_awake(ball) == false);
+  CHECK(found.size() == 2);
+  destroy_world(world);
+}
+}  // namespace
+
+TEST_CASE("README events and queries example", "[physics][readme]") { readme_events_example(); }
