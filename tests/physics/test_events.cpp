@@ -9,29 +9,12 @@
 #include <vector>
 
 #include "physics/tandem.h"
+#include "physics_test_support.h"
 
 using namespace tandem;
+using namespace tandem::test_support;
 
 namespace {
-
-constexpr long double k_two32 = 4294967296.0L;
-long double ld(Q32 v) { return static_cast<long double>(v.raw) / k_two32; }
-
-const Q32 k_dt = Q32::from_ratio(1, 60);
-
-struct ScopedWorld {
-  WorldId id;
-  explicit ScopedWorld(const WorldDef& def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-  }
-  ~ScopedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  ScopedWorld(const ScopedWorld&) = delete;
-  ScopedWorld& operator=(const ScopedWorld&) = delete;
-};
 
 ShapeDef material(Q32 friction, Q32 restitution, bool hit_events = false) {
   ShapeDef sd = default_shape_def();

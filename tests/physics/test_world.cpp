@@ -19,9 +19,11 @@
 #include <vector>
 
 #include "physics/tandem.h"
+#include "physics_test_support.h"
 #include "physics/world.h"
 
 using namespace tandem;
+using namespace tandem::test_support;
 
 // ---------------------------------------------------------------------------
 // Counting allocator (whole binary; counts only while g_count_allocations)
@@ -87,25 +89,6 @@ void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcep
 
 namespace {
 
-constexpr long double k_two32 = 4294967296.0L;
-
-long double ld(Q32 v) { return static_cast<long double>(v.raw) / k_two32; }
-
-/// A world that is destroyed at scope exit.
-struct ScopedWorld {
-  WorldId id;
-  explicit ScopedWorld(const WorldDef& def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-  }
-  ~ScopedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  ScopedWorld(const ScopedWorld&) = delete;
-  ScopedWorld& operator=(const ScopedWorld&) = delete;
-};
-
 BodyId make_dynamic(WorldId world, Vec2 position) {
   BodyDef def = default_body_def();
   def.type = BodyType::dynamic_body;
@@ -123,7 +106,6 @@ ShapeId add_circle(BodyId body, Q32 radius, Vec2 center = {}) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-const Q32 k_dt = Q32::from_ratio(1, 60);
 
 }  // namespace
 
