@@ -9,9 +9,15 @@
 // runs, so none of them can saturate), collision.h's validate_*(), and — on a
 // dynamic body — the shape's and the body's mass limits.
 //
+// create_chain_shapes checks every point's reach, then make_chain_segments()
+// (its message, nothing created on refusal), then adds one massless
+// chain-segment shape per segment in segment order.
+//
 // A body's shapes stay in ascending shape index (a doubly linked list), so a
 // new shape whose index was freed earlier is inserted in the middle.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "physics/body.h"
 #include "physics/shape.h"
@@ -180,6 +186,32 @@ void link_shape(World* w, Body* body, int32_t index) {
   ++body->shape_count;
 }
 
+/// Allocates a shape index, fills the record and links it into body b's list
+/// (every check already passed); returns the index. The body's mass is not
+/// updated here.
+int32_t insert_shape(World* w, int32_t b, const ShapeDef& def, const ShapeGeometry& geometry) {
+  const int32_t index = id_pool_allocate(&w->shape_pool);
+  if (static_cast<size_t>(index) >= w->shapes.size()) {
+    w->shapes.resize(static_cast<size_t>(index) + 1);
+    w->shape_geometries.resize(static_cast<size_t>(index) + 1);
+  }
+  Shape& shape = shape_at(w, index);
+  shape = Shape{};
+  shape.body_index = b;
+  shape.type = geometry.type;
+  shape.friction = def.friction;
+  shape.restitution = def.restitution;
+  shape.density = def.density;
+  shape.filter = def.filter;
+  shape.user_data = def.user_data;
+  shape.is_sensor = def.is_sensor;
+  shape.enable_hit_events = def.enable_hit_events;
+  w->shape_geometries[static_cast<size_t>(index)] = geometry;
+  link_shape(w, &w->bodies[static_cast<size_t>(b)], index);
+  shape.aabb = compute_shape_aabb(geometry, w->body_sims[static_cast<size_t>(b)].transform);
+  return index;
+}
+
 Result<ShapeId> create_shape(BodyId body_id, const ShapeDef& def, const ShapeGeometry& geometry, const char* fn) {
   Result<ShapeId> result;
   Status& s = result.status;
@@ -209,25 +241,7 @@ Result<ShapeId> create_shape(BodyId body_id, const ShapeDef& def, const ShapeGeo
     return result;
   }
 
-  const int32_t index = id_pool_allocate(&w->shape_pool);
-  if (static_cast<size_t>(index) >= w->shapes.size()) {
-    w->shapes.resize(static_cast<size_t>(index) + 1);
-    w->shape_geometries.resize(static_cast<size_t>(index) + 1);
-  }
-  Shape& shape = shape_at(w, index);
-  shape = Shape{};
-  shape.body_index = b;
-  shape.type = geometry.type;
-  shape.friction = def.friction;
-  shape.restitution = def.restitution;
-  shape.density = def.density;
-  shape.filter = def.filter;
-  shape.user_data = def.user_data;
-  shape.is_sensor = def.is_sensor;
-  shape.enable_hit_events = def.enable_hit_events;
-  w->shape_geometries[static_cast<size_t>(index)] = geometry;
-  link_shape(w, &w->bodies[static_cast<size_t>(b)], index);
-  shape.aabb = compute_shape_aabb(geometry, w->body_sims[static_cast<size_t>(b)].transform);
+  const int32_t index = insert_shape(w, b, def, geometry);
   const Status mass = update_body_mass(w, b, fn);  // checked above: cannot fail
   TANDEM_ASSERT(mass.ok());
   result.value = make_shape_id(*w, index);
@@ -359,6 +373,67 @@ Result<ShapeId> create_segment_shape(BodyId body, const ShapeDef& def, const Seg
   g.type = ShapeType::segment;
   g.segment = segment;
   return create_shape(body, def, g, "create_segment_shape");
+}
+
+Status create_chain_shapes(BodyId body_id, const ShapeDef& def, const Vec2* points, int32_t count, bool loop,
+                           std::vector<ShapeId>* out_shapes) {
+  const char* fn = "create_chain_shapes";
+  World* w = nullptr;
+  int32_t b = 0;
+  Status s = resolve_body(body_id, fn, true, WorldId{}, &w, &b);
+  if (!s.ok()) return s;
+  s = validate_shape_def(def, fn);
+  if (!s.ok()) return s;
+  // Too many points for the shape limit: refused before anything is sized
+  // by count.
+  if (count > k_max_shapes) {
+    return make_status(StatusCode::capacity_exceeded, std::string(fn) + ": " + std::to_string(count) +
+                                                          " points exceed k_max_shapes " +
+                                                          std::to_string(k_max_shapes));
+  }
+  // Every point (ghosts included) within ±k_max_shape_size of the body origin
+  // before make_chain_segments measures distances, so nothing can saturate.
+  if (points != nullptr) {
+    for (int32_t k = 0; k < count; ++k) {
+      const Vec2 p = points[k];
+      if (abs(p.x) > k_max_shape_size || abs(p.y) > k_max_shape_size) {
+        return invalid_argument(std::string(fn) + ": point " + std::to_string(k) + " (" + q32_text(p.x) + ", " +
+                                q32_text(p.y) + ") m is farther than k_max_shape_size " +
+                                q32_text(k_max_shape_size) + " m from the body origin (on an axis)");
+      }
+    }
+  }
+  std::vector<ChainSegment> segments(static_cast<size_t>(count > 0 ? count : 0));
+  int32_t segment_count = 0;
+  const GeometryStatus gs = make_chain_segments(points, count, loop, -1, segments.data(), count, &segment_count);
+  if (!gs.ok) return invalid_argument(std::string(fn) + ": " + gs.message);
+  if (w->bodies[static_cast<size_t>(b)].type == BodyType::dynamic_body) {
+    // Chain segments add no mass; the body's own mass must still be valid.
+    s = check_body_mass_with(*w, b, k_null_index, Q32::zero(), nullptr, std::string(fn) + ": " + describe(body_id));
+    if (!s.ok()) return s;
+  }
+  if (w->shape_pool.alive_count > k_max_shapes - segment_count) {
+    return make_status(StatusCode::capacity_exceeded, std::string(fn) + ": " + describe(body_id.world) + " has " +
+                                                          std::to_string(w->shape_pool.alive_count) +
+                                                          " shapes; " + std::to_string(segment_count) +
+                                                          " more would exceed " + std::to_string(k_max_shapes));
+  }
+  std::vector<ShapeId> ids;
+  ids.reserve(static_cast<size_t>(segment_count));
+  int32_t chain_id = -1;  // the first segment's shape index names the chain
+  for (int32_t k = 0; k < segment_count; ++k) {
+    ShapeGeometry g{};
+    g.type = ShapeType::chain_segment;
+    g.chain_segment = segments[static_cast<size_t>(k)];
+    const int32_t index = insert_shape(w, b, def, g);
+    if (chain_id < 0) chain_id = index;
+    w->shape_geometries[static_cast<size_t>(index)].chain_segment.chain_id = chain_id;
+    ids.push_back(make_shape_id(*w, index));
+  }
+  const Status mass = update_body_mass(w, b, fn);  // no mass added: cannot fail
+  TANDEM_ASSERT(mass.ok());
+  if (out_shapes != nullptr) *out_shapes = std::move(ids);
+  return Status{};
 }
 
 Status destroy_shape(ShapeId id) {

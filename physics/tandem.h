@@ -39,6 +39,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fixed/fixed.h"
 #include "fixed/fixed_math.h"
@@ -417,6 +418,24 @@ Result<ShapeId> create_polygon_shape(BodyId body, const ShapeDef& def, const Pol
 /// Attaches a two-sided segment (body frame, m). Segments have no area and
 /// add no mass; as create_circle_shape otherwise.
 Result<ShapeId> create_segment_shape(BodyId body, const ShapeDef& def, const Segment& segment);
+
+/// Attaches a chain (body frame, m) as one chain-segment shape per segment,
+/// built by make_chain_segments() (collision.h): an open chain of count ≥ 4
+/// points gives count − 3 segments (points[0] and points[count − 1] are ghost
+/// vertices only), a loop of count ≥ 3 gives count. Chain segments are
+/// one-sided — they collide only on the right of point[i] → point[i+1], so a
+/// clockwise loop holds bodies inside and a counter-clockwise loop is solid
+/// inside — have no mass, and let bodies slide across inner vertices without
+/// catching. Every point must be within ±k_max_shape_size of the body origin.
+/// The shapes are created in segment order (so in ascending shape index, each
+/// taking the lowest free one) and share chain_id = the first segment's shape
+/// index.
+/// On success *out_shapes (may be null) receives their handles in segment
+/// order; on refusal (make_chain_segments' message, or as
+/// create_circle_shape) no shape is created and *out_shapes is unchanged.
+/// Each segment is a shape of its own for destroy_shape() and the setters.
+Status create_chain_shapes(BodyId body, const ShapeDef& def, const Vec2* points, int32_t count, bool loop,
+                           std::vector<ShapeId>* out_shapes);
 
 /// Detaches and destroys a shape and updates its body's mass.
 Status destroy_shape(ShapeId shape);
