@@ -93,7 +93,7 @@ struct Fixed {
   static constexpr Fixed one() { return from_raw(k_raw_one); }
   static constexpr Fixed half() { return from_raw(k_raw_one / 2); }
 
-  /// The value as a double: debug output and reports only. Exact for Q16.16;
+  /// The value in binary64 floating point (tandem-edge): debug output and reports only. Exact for Q16.16;
   /// for Q32.32 rounded to 53 bits.
   double to_double() const { return static_cast<double>(raw) / static_cast<double>(k_raw_one); }  // tandem-edge: debug/report conversion
 
@@ -408,7 +408,7 @@ struct FixedParse {
 /// rounding of any value a person writes; longer text is rejected, not cut.
 inline constexpr size_t k_max_fraction_digits = 320;
 
-/// Parses decimal text exactly, never through a double: an optional sign,
+/// Parses decimal text exactly, never through binary floating point: an optional sign,
 /// digits with at most one '.', and an optional exponent (e or E, optional
 /// sign, digits) — the JSON number grammar, plus a leading '+' and leading
 /// zeros. The exact decimal value is rounded once to the nearest raw value,

@@ -2,7 +2,7 @@
 // only. No floating point, no table larger than a few KB.
 //
 // Accuracy (asserted by tests/fixed/test_fixed_math.cpp: square roots exactly
-// in integer arithmetic, the rest against a long double oracle; measured
+// in integer arithmetic, the rest against an extended-precision oracle; measured
 // maxima are in the README):
 //   sqrt, rsqrt   correctly rounded (error ≤ 0.5 raw unit), both formats
 //   sin, cos      Q32.32 within 2 raw units; Q16.16 within 1 raw unit

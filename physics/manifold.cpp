@@ -77,7 +77,7 @@
 //   fallback normal, chosen by a fixed rule per pair.
 //
 // * Accuracy (tests/physics/test_manifold.cpp, 100,000 random pairs against
-//   an exact long double oracle and against GJK): for disjoint cores the
+//   an exact extended-precision oracle and against GJK): for disjoint cores the
 //   smallest separation matches the exact one to ~1e-9 m, except where A's
 //   face is kept within the flip tolerance (then up to 5e-4 m larger, never
 //   smaller); shallow overlaps match the exact penetration depth likewise.

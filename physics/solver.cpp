@@ -15,7 +15,7 @@
 // leaves a length error of about 0.42·(h·ω)⁸, which does not accumulate. Up
 // to |h·ω| = 1/16 rad per sub-step (15 rad/s at 60 Hz and 4 sub-steps) that
 // is below one raw unit and the angle is 0.13 % short at most — the same
-// first-order update float engines use. Faster spins (up to the clamp of
+// first-order update floating-point engines use. Faster spins (up to the clamp of
 // k_max_rotation_per_sub_step = π/16) take the exact path instead:
 // rot_normalize(rot_from_angle(h·ω)·q), a sine, a cosine, a root and two
 // divides, paid only by bodies spinning that fast.
