@@ -410,6 +410,11 @@ struct ShapeGeometry {
   ChainSegment chain_segment;
 };
 
+/// The manifold seen from the other shape: normal negated, anchors swapped,
+/// and the two halves of each feature id swapped. Exact; flipping twice gives
+/// the manifold back.
+Manifold flip_manifold(const Manifold& m);
+
 /// Dispatches to the manifold function for the pair. When the pair's table
 /// entry is stored the other way round (e.g. circle vs polygon), the shapes
 /// are swapped, collided, and the result flipped (normal negated, anchors and

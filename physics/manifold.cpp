@@ -83,7 +83,7 @@
 //   smaller); shallow overlaps match the exact penetration depth likewise.
 //
 // * Symmetry. collide() swaps and flips pairs stored the other way round, so
-//   collide(A, B) is bit-for-bit flip(collide(B, A)) for pairs of different
+//   collide(A, B) is bit-for-bit flip_manifold(collide(B, A)) for pairs of different
 //   types. For two shapes of the same type the function itself runs with A
 //   as reference first, so the two orders agree up to rounding and the
 //   choice of reference face within the flip tolerance.
@@ -164,19 +164,6 @@ Manifold to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b) {
   }
   m.point_count = lm.count;
   return m;
-}
-
-/// The manifold seen from the other shape: normal negated, anchors and the
-/// two halves of each feature id swapped.
-Manifold flip(const Manifold& m) {
-  Manifold f = m;
-  f.normal = -m.normal;
-  for (int32_t i = 0; i < m.point_count; ++i) {
-    ManifoldPoint& p = f.points[static_cast<size_t>(i)];
-    std::swap(p.anchor_a, p.anchor_b);
-    p.id = static_cast<uint16_t>(((p.id & 0xFFu) << 8) | (p.id >> 8));
-  }
-  return f;
 }
 
 // ---------------------------------------------------------------------------
@@ -717,6 +704,18 @@ Manifold collide_chain_segment_and_core(const ChainSegment& a, Transform xf_a, c
 
 }  // namespace
 
+Manifold flip_manifold(const Manifold& m) {
+  Manifold f = m;
+  f.normal = -m.normal;
+  for (int32_t i = 0; i < m.point_count; ++i) {
+    ManifoldPoint& p = f.points[static_cast<size_t>(i)];
+    std::swap(p.anchor_a, p.anchor_b);
+    p.id = static_cast<uint16_t>(((p.id & 0xFFu) << 8) | (p.id >> 8));
+  }
+  return f;
+}
+
+
 // ---------------------------------------------------------------------------
 // Public manifold functions
 // ---------------------------------------------------------------------------
@@ -848,10 +847,10 @@ Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b,
     case T::circle:
       switch (b.type) {
         case T::circle: return collide_circles(a.circle, xf_a, b.circle, xf_b);
-        case T::capsule: return flip(collide_capsule_and_circle(b.capsule, xf_b, a.circle, xf_a));
-        case T::segment: return flip(collide_segment_and_circle(b.segment, xf_b, a.circle, xf_a));
-        case T::polygon: return flip(collide_polygon_and_circle(b.polygon, xf_b, a.circle, xf_a));
-        case T::chain_segment: return flip(collide_chain_segment_and_circle(b.chain_segment, xf_b, a.circle, xf_a));
+        case T::capsule: return flip_manifold(collide_capsule_and_circle(b.capsule, xf_b, a.circle, xf_a));
+        case T::segment: return flip_manifold(collide_segment_and_circle(b.segment, xf_b, a.circle, xf_a));
+        case T::polygon: return flip_manifold(collide_polygon_and_circle(b.polygon, xf_b, a.circle, xf_a));
+        case T::chain_segment: return flip_manifold(collide_chain_segment_and_circle(b.chain_segment, xf_b, a.circle, xf_a));
         case T::count: break;
       }
       break;
@@ -859,9 +858,9 @@ Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b,
       switch (b.type) {
         case T::circle: return collide_capsule_and_circle(a.capsule, xf_a, b.circle, xf_b);
         case T::capsule: return collide_capsules(a.capsule, xf_a, b.capsule, xf_b);
-        case T::segment: return flip(collide_segment_and_capsule(b.segment, xf_b, a.capsule, xf_a));
-        case T::polygon: return flip(collide_polygon_and_capsule(b.polygon, xf_b, a.capsule, xf_a));
-        case T::chain_segment: return flip(collide_chain_segment_and_capsule(b.chain_segment, xf_b, a.capsule, xf_a));
+        case T::segment: return flip_manifold(collide_segment_and_capsule(b.segment, xf_b, a.capsule, xf_a));
+        case T::polygon: return flip_manifold(collide_polygon_and_capsule(b.polygon, xf_b, a.capsule, xf_a));
+        case T::chain_segment: return flip_manifold(collide_chain_segment_and_capsule(b.chain_segment, xf_b, a.capsule, xf_a));
         case T::count: break;
       }
       break;
@@ -879,9 +878,9 @@ Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b,
       switch (b.type) {
         case T::circle: return collide_polygon_and_circle(a.polygon, xf_a, b.circle, xf_b);
         case T::capsule: return collide_polygon_and_capsule(a.polygon, xf_a, b.capsule, xf_b);
-        case T::segment: return flip(collide_segment_and_polygon(b.segment, xf_b, a.polygon, xf_a));
+        case T::segment: return flip_manifold(collide_segment_and_polygon(b.segment, xf_b, a.polygon, xf_a));
         case T::polygon: return collide_polygons(a.polygon, xf_a, b.polygon, xf_b);
-        case T::chain_segment: return flip(collide_chain_segment_and_polygon(b.chain_segment, xf_b, a.polygon, xf_a));
+        case T::chain_segment: return flip_manifold(collide_chain_segment_and_polygon(b.chain_segment, xf_b, a.polygon, xf_a));
         case T::count: break;
       }
       break;

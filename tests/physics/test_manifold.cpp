@@ -90,17 +90,6 @@ Q32 min_separation(const Manifold& m) {
   return s;
 }
 
-Manifold flipped(const Manifold& m) {
-  Manifold f = m;
-  f.normal = -m.normal;
-  for (int32_t i = 0; i < m.point_count; ++i) {
-    ManifoldPoint& p = f.points[static_cast<size_t>(i)];
-    std::swap(p.anchor_a, p.anchor_b);
-    p.id = static_cast<uint16_t>(((p.id & 0xFFu) << 8) | (p.id >> 8));
-  }
-  return f;
-}
-
 bool identical(const Manifold& a, const Manifold& b) {
   if (a.point_count != b.point_count) return false;
   if (a.point_count == 0) return true;
@@ -760,7 +749,7 @@ TEST_CASE("collide(A, B) is flip(collide(B, A))", "[physics][manifold]") {
       const Manifold ab = collide(a, xa, bb, xb);
       const Manifold ba = collide(bb, xb, a, xa);
       INFO("kinds " << ka << " " << kb);
-      REQUIRE(identical(ab, flipped(ba)));
+      REQUIRE(identical(ab, flip_manifold(ba)));
       compared += ab.point_count > 0;
     }
     CHECK(compared > 200);
@@ -1003,7 +992,7 @@ TEST_CASE("random pairs: separation agrees with the exact core distance", "[phys
       if (front && sep < margin - 1e-6) {
         ++chain_front;
         REQUIRE(m.point_count >= 1);
-        const Manifold mc = a_chain ? m : flipped(m);
+        const Manifold mc = a_chain ? m : flip_manifold(m);
         CHECK(std::fabs(dbl(mc.normal.x) - static_cast<double>(nrm.x)) < 1e-8);
         CHECK(std::fabs(dbl(mc.normal.y) - static_cast<double>(nrm.y)) < 1e-8);
         CHECK(std::fabs(dbl(min_separation(m)) - sep) < 1e-7);
@@ -1087,4 +1076,28 @@ TEST_CASE("random pairs: separation agrees with GJK distance", "[physics][manifo
   }
   WARN("GJK comparisons " << checked << ", worst |manifold − GJK| " << worst << " m");
   CHECK(checked > k_random_pairs / 40);
+}
+
+TEST_CASE("flip_manifold negates the normal and swaps anchors and feature-id halves", "[physics][manifold]") {
+  using namespace tandem::literals;
+  Manifold m;
+  m.normal = {0_q32, 1_q32};
+  m.point_count = 1;
+  m.points[0].anchor_a = {1_q32, 2_q32};
+  m.points[0].anchor_b = {3_q32, 4_q32};
+  m.points[0].point = {5_q32, 6_q32};
+  m.points[0].separation = -0.25_q32;
+  m.points[0].id = make_feature_id(1, 2);
+  const Manifold f = flip_manifold(m);
+  CHECK(f.normal == Vec2{0_q32, -1_q32});
+  CHECK(f.point_count == 1);
+  CHECK(f.points[0].anchor_a == Vec2{3_q32, 4_q32});
+  CHECK(f.points[0].anchor_b == Vec2{1_q32, 2_q32});
+  CHECK(f.points[0].point == m.points[0].point);
+  CHECK(f.points[0].separation == m.points[0].separation);
+  CHECK(f.points[0].id == make_feature_id(2, 1));
+  const Manifold back = flip_manifold(f);
+  CHECK(back.normal == m.normal);
+  CHECK(back.points[0].anchor_a == m.points[0].anchor_a);
+  CHECK(back.points[0].id == m.points[0].id);
 }
