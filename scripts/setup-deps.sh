@@ -20,7 +20,7 @@ base=(build-essential cmake clang git ninja-build pkg-config)
 # Libraries the library, the command line and its demo use.
 libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
 # Only for scripts/test.sh: cross builds and tools/bench.
-extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev)
+extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev)
 
 case "$group" in
   all) wanted=("${base[@]}" "${libs[@]}" "${extra[@]}") ;;

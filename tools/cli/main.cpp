@@ -22,6 +22,7 @@
 #include "fixed/fixed_math.h"
 #include "fixed/vec2.h"
 #include "physics/tandem.h"
+#include "cli.h"
 
 namespace {
 
@@ -314,7 +315,17 @@ int main(int argc, char** argv) {
 
   auto* version = app.add_subcommand("version", "Print the engine and number-format versions");
 
+  tandem::cli::GlobalOptions options;
+  app.add_flag("--quiet,-q", options.quiet, "no progress output; only errors and the final result");
+  app.add_flag("--json", options.json, "machine-readable output on stdout");
+  std::vector<tandem::cli::Command> commands;
+  tandem::cli::register_scene_commands(app, options, &commands);
+  tandem::cli::register_replay_commands(app, options, &commands);
+  tandem::cli::register_bench_commands(app, options, &commands);
+
   CLI11_PARSE(app, argc, argv);
+  for (const tandem::cli::Command& command : commands)
+    if (command.app->parsed()) return command.run();
   if (demo->parsed()) return run_demo();
   if (fixed->parsed()) return run_fixed(func, args, q16);
   if (version->parsed()) {

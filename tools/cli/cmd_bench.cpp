@@ -1,0 +1,8 @@
+// cmd_bench.cpp — placeholder until this command family lands (see cli.h).
+#include "cli.h"
+
+namespace tandem::cli {
+
+void register_bench_commands(CLI::App&, const GlobalOptions&, std::vector<Command>*) {}
+
+}  // namespace tandem::cli
