@@ -313,6 +313,7 @@ void apply_body_mass(World* w, int32_t index, const BodyMass& m) {
         Vec2{add_quiet(sim.linear_velocity.x, dv.x), add_quiet(sim.linear_velocity.y, dv.y)}, w->def.max_linear_speed);
   }
   if (body.fixed_rotation) sim.angular_velocity = Q32::zero();
+  compute_body_extents(*w, index, sim.local_center, &body.min_extent, &body.max_extent);
 }
 
 Status update_body_mass(World* w, int32_t index, const char* function) {
@@ -518,6 +519,7 @@ Status body_set_transform(BodyId id, Vec2 position, Rot rotation) {
     sim.center = transform_point(sim.transform, sim.local_center);
     update_body_shape_bounds(w, i);
     wake_body_and_touching(w, i, true);
+    wake_overlapping_sleepers(w, i);
     return s;
   });
 }

@@ -64,6 +64,8 @@ struct Body {
   bool enabled = true;
   bool fixed_rotation = false;
   bool bullet = false;
+  Q32 min_extent;                     ///< thinnest shape dimension, m (derived from the shapes; continuous.cpp)
+  Q32 max_extent;                     ///< farthest shape point from the centre of mass, m (derived)
 };
 
 /// Persistent hot state, indexed by body index.
@@ -100,7 +102,7 @@ struct SolverBodyParams {
   Q32 inv_inertia;              ///< 1/(kg·m²)
 };
 
-static_assert(sizeof(Body) <= 64);
+static_assert(sizeof(Body) <= 80);
 static_assert(sizeof(BodySim) <= 160);
 static_assert(sizeof(BodyState) <= 56);
 static_assert(sizeof(SolverBodyParams) <= 56);

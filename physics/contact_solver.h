@@ -7,10 +7,10 @@
 // array in contact order; each refers to its two bodies only by SOLVER index
 // (k_null_index for a body that is not simulated: static, sleeping, disabled)
 // and carries copies of their inverse masses, so the inner loops read
-// BodyState and the constraint and nothing else. A graph-colouring pass can
-// later reorder indices into colours whose constraints touch disjoint solver
-// bodies, and a wide solver can transpose a colour into SoA lanes, without
-// changing these records.
+// BodyState and the constraint and nothing else. The array is ordered by
+// graph colour (prepare_contact_constraints): the constraints of one colour
+// touch disjoint movable bodies, so a wide solver can transpose a colour into
+// lanes without changing these records.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +22,10 @@ namespace tandem {
 
 struct World;
 struct StepContext;
+
+/// Graph colours for contact constraints; constraints that find none of
+/// them free are solved last, in an overflow group.
+inline constexpr int32_t k_contact_colour_count = 24;
 
 /// Soft constraint coefficients for one stiffness at one sub-step (Box2D v3's
 /// "soft step"): with ω = 2π·hertz, a1 = 2ζ + hω, a2 = hω·a1, a3 = 1/(1 + a2):

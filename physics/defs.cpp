@@ -21,6 +21,7 @@ WorldDef default_world_def() {
   def.max_linear_speed = 400_q32;
   def.bounds = {{-k_max_world_coordinate, -k_max_world_coordinate}, {k_max_world_coordinate, k_max_world_coordinate}};
   def.enable_sleep = true;
+  def.enable_continuous = true;
   def.broad_phase = BroadPhaseKind::naive;
   def.user_data = 0;
   def.internal_cookie = k_def_cookie;

@@ -72,6 +72,20 @@ void wake_body_and_touching(World* world, int32_t body_index, bool wake_lone_sle
   }
 }
 
+void wake_overlapping_sleepers(World* world, int32_t body_index) {
+  const Body& body = world->bodies[static_cast<size_t>(body_index)];
+  for (int32_t si = body.head_shape; si != k_null_index; si = world->shapes[static_cast<size_t>(si)].next_shape) {
+    const AABB moved = world->shapes[static_cast<size_t>(si)].aabb;
+    for (size_t other = 0; other < world->shapes.size(); ++other) {
+      if (!id_pool_is_alive(world->shape_pool, static_cast<int32_t>(other))) continue;
+      const Shape& shape = world->shapes[other];
+      if (shape.body_index == body_index) continue;
+      if (!is_sleeping(world->bodies[static_cast<size_t>(shape.body_index)])) continue;
+      if (aabb_overlaps(moved, shape.aabb)) wake_body_island(world, shape.body_index);
+    }
+  }
+}
+
 int32_t wake_touching_count(World* world, int32_t body_index) {
   int32_t touching = 0;
   for (const Contact& c : world->contacts) {

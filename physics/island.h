@@ -33,7 +33,10 @@
 //     transform, type change, shape added / removed / re-massed
 //     (update_body_mass), body_set_awake(true), body_enable_sleep(false);
 //   - destroying a body or changing its shapes or transform also wakes every
-//     body touching it (wake_touching), static bodies included;
+//     body touching it (wake_touching), static bodies included; a transform
+//     also wakes every sleeper whose shape AABBs overlap the body's new ones
+//     (wake_overlapping_sleepers), so a teleported wall cannot end up inside
+//     sleeping bodies that never notice it;
 //   - world_enable_sleep(false) wakes every body.
 // A body put to sleep by hand (body_set_awake(false), BodyDef::is_awake =
 // false) is an island of its own; touching sleepers of other islands are
@@ -69,6 +72,12 @@ void wake_body_island(World* world, int32_t body_index);
 /// Wakes the islands of every body that touches `body_index` through a
 /// touching contact (either side; the body itself is not woken).
 void wake_touching(World* world, int32_t body_index);
+
+/// Wakes the island of every sleeping body with a shape whose AABB overlaps
+/// one of this body's shape AABBs (a teleport can move a body, a static one
+/// included, into sleepers it had no contact with). O(shapes × the body's
+/// shapes); only on teleport.
+void wake_overlapping_sleepers(World* world, int32_t body_index);
 
 /// Wakes the body's island and the islands of every body touching it. With
 /// wake_lone_sleeper false, a sleeping body with no touching contact stays

@@ -380,3 +380,24 @@ TEST_CASE("a body created asleep hangs in the air until something touches it", "
   for (int i = 0; i < 120; ++i) REQUIRE(world_step(w.id, k_dt).ok());
   CHECK(ld(body_position(b.value).y) < 2.0L);
 }
+
+TEST_CASE("a static body teleported into sleeping bodies wakes them", "[physics][sleep]") {
+  ScopedWorld w;
+  add_ground(w.id);
+  const BodyId box = add_box(w.id, {0_q32, 0.5_q32});
+  const BodyId far_box = add_box(w.id, {20_q32, 0.5_q32});
+  // A static block standing apart, touching nothing.
+  const BodyId wall = add_box(w.id, {-10_q32, 3_q32}, 0.5_q32, BodyType::static_body);
+  for (int i = 0; i < 180 && (body_is_awake(box) || body_is_awake(far_box)); ++i)
+    REQUIRE(world_step(w.id, k_dt).ok());
+  REQUIRE_FALSE(body_is_awake(box));
+  REQUIRE_FALSE(body_is_awake(far_box));
+  // Teleport the wall so that it overlaps the first box: it had no contact
+  // with it, so only the overlap test can wake it.
+  REQUIRE(body_set_transform(wall, {0.6_q32, 0.5_q32}, Rot{}).ok());
+  CHECK(body_is_awake(box));
+  CHECK_FALSE(body_is_awake(far_box));
+  // Awake, the box is pushed out of the wall by the solver.
+  for (int i = 0; i < 60; ++i) REQUIRE(world_step(w.id, k_dt).ok());
+  CHECK(ld(body_position(box).x) < -0.05L);
+}
