@@ -1,23 +1,42 @@
 // broad_phase.h — candidate shape pairs for the contact stage (internal).
 //
-// Contract every broad phase implements (naive now; sweep-and-prune, grid and
-// tree later, selected by WorldDef::broad_phase):
+// Contract every broad phase implements (naive, sweep-and-prune, grid and
+// tree, selected by WorldDef::broad_phase / world_set_broad_phase):
 //   * Input: the world's live shapes with their world AABBs (Shape::aabb,
 //     updated at the end of each step and on teleport).
 //   * Output: every pair of shapes whose AABBs, each fattened by
 //     k_speculative_distance, overlap (closed intervals) and that may
-//     collide (shapes_should_collide), as (lower shape index, higher shape
-//     index), sorted ascending by that key, without duplicates. The output
-//     depends only on the shapes' data, never on addresses or the order in
-//     which an implementation visits them, so every broad phase gives the
-//     same list for the same world — the contact stage's order (contact.cpp)
-//     starts here.
+//     collide (shapes_should_collide, then the custom filter), as (lower
+//     shape index, higher shape index), sorted ascending by that key, without
+//     duplicates. The output depends only on the shapes' data, never on
+//     addresses or the order in which an implementation visits them, so every
+//     broad phase gives the same list for the same world — the contact
+//     stage's order (contact.cpp) starts here.
 //   * No heap allocation once warmed up: the pair buffer and any scratch are
 //     kept in the BroadPhase record and only grow.
 //
-// The naive implementation tests all pairs (O(n²)), in ascending shape index
-// for the lower shape and then the higher one, which is already the output
-// order. Rejected for now: anything smarter — that is the broad-phase issue.
+// How the four keep the contract (broad_phase.cpp has the shared part):
+//   * A shared pre-pass lists the proxies (live, non-sensor shapes on enabled
+//     bodies) in ascending shape index with their fattened boxes and whether
+//     their body is dynamic. Whatever a structure visits, a candidate pair
+//     goes through one function, emit_candidate(): skip two non-dynamic
+//     shapes, the exact fattened-box test, the filters. So a structure may
+//     over-approximate (a tree's enlarged boxes, a grid's cells) but the test
+//     that decides is the naive one's, bit for bit.
+//   * Each structure finds every overlapping pair exactly once; the emitted
+//     keys are then put in order by a counting sort on the lower index and an
+//     insertion sort of each lower index's few partners (a global sort of all
+//     pairs was ~10× slower in the prototype). Keys are unique, so the order
+//     is the unique sorted order.
+//   * naive (broad_phase.cpp): all pairs in key order, no sort.
+//   * sweep_and_prune (broad_phase_sap.cpp): persistent end points on x.
+//   * grid (broad_phase_grid.cpp): Max Grid, rebuilt every step.
+//   * tree (broad_phase_tree.cpp): persistent dynamic AABB tree.
+//   Persistent state is keyed by shape index and re-synchronised from the
+//   shapes at every update (a pass over the shape slots comparing boxes), so
+//   no other file has to tell the broad phase about creates, destroys or
+//   teleports, and broad_phase_reset() (snapshot restore, kind change) only
+//   has to forget it.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +44,7 @@
 
 #include "fixed/vec2.h"
 #include "physics/defs.h"
+#include "physics/tandem.h"
 
 namespace tandem {
 
@@ -43,11 +63,86 @@ constexpr uint64_t shape_pair_key(int32_t lower, int32_t higher) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(lower)) << 32) | static_cast<uint32_t>(higher);
 }
 
+/// Per shape index: whether the shape took part in the last update.
+inline constexpr uint8_t k_proxy_none = 0;     ///< dead, sensor or on a disabled body
+inline constexpr uint8_t k_proxy_static = 1;   ///< on a static or kinematic body
+inline constexpr uint8_t k_proxy_dynamic = 2;  ///< on a dynamic body
+
+/// A sweep-and-prune end point: the x of a box side and a tag, (is_max << 31)
+/// | shape index. Sorted by (value, tag): at equal x the minimum end points
+/// come first (closed intervals touch), and the tag makes the key unique.
+struct SapEndpoint {
+  int64_t value = 0;
+  uint32_t tag = 0;
+};
+
+/// Persistent sweep-and-prune state (broad_phase_sap.cpp).
+struct SweepAndPrune {
+  std::vector<SapEndpoint> endpoints;  ///< sorted by (value, tag)
+  std::vector<SapEndpoint> added;      ///< scratch: end points of new proxies
+  std::vector<SapEndpoint> merged;     ///< scratch: merge target
+  std::vector<uint8_t> present;        ///< by shape index: 1 when its end points are in `endpoints`
+  std::vector<int32_t> active_dynamic; ///< sweep scratch: open intervals of dynamic shapes
+  std::vector<int32_t> active_other;   ///< sweep scratch: open intervals of the others
+  std::vector<int32_t> active_slot;    ///< by shape index: position in its active list
+};
+
+/// One grid entry (broad_phase_grid.cpp), stored in bucket order so a cell's
+/// proxies are read from consecutive memory.
+struct GridEntry {
+  AABB box;             ///< fattened bounds
+  uint64_t cell = 0;    ///< (uint32 cx << 32) | uint32 cy
+  int32_t shape = 0;    ///< shape index
+  uint8_t dynamic = 0;  ///< 1 when on a dynamic body
+};
+
+/// Max Grid scratch, rebuilt each update (broad_phase_grid.cpp).
+struct Grid {
+  std::vector<uint64_t> proxy_cell;     ///< per proxy: cell key, or 0x8000000080000000 for an outlier
+  std::vector<uint32_t> proxy_bucket;   ///< per proxy: hash bucket
+  std::vector<uint32_t> bucket_start;   ///< table size + 1 offsets into entries
+  std::vector<GridEntry> entries;       ///< grid proxies in bucket order
+  std::vector<int32_t> outliers;        ///< proxy positions of outliers, ascending
+  int64_t cell_size = 0;                ///< raw Q32 (last update; for tests)
+  uint32_t bucket_bits = 0;             ///< table size = 1 << bucket_bits
+};
+
+/// A dynamic-tree node (broad_phase_tree.cpp). A leaf has child1 = −1.
+struct TreeNode {
+  AABB box;              ///< leaf: the shape's fattened box grown by the tree margin; inner: union of children
+  int32_t parent = -1;   ///< parent node, −1 at the root; next free node while on the free list
+  int32_t child1 = -1;
+  int32_t child2 = -1;
+  int32_t height = 0;    ///< leaf 0; −1 while free
+  int32_t shape = -1;    ///< leaf: shape index
+};
+
+/// Persistent dynamic AABB tree (broad_phase_tree.cpp).
+struct DynamicTree {
+  std::vector<TreeNode> nodes;        ///< node pool
+  int32_t root = -1;
+  int32_t free_list = -1;             ///< LIFO list through TreeNode::parent
+  std::vector<int32_t> leaf_of_shape; ///< by shape index: leaf node or −1
+  std::vector<int32_t> stack;         ///< query scratch
+};
+
 /// Broad-phase state kept between steps (buffers that only grow).
 struct BroadPhase {
   std::vector<ShapePair> pairs;   ///< the last update's output, sorted by shape_pair_key
   std::vector<int32_t> proxies;   ///< scratch: shapes that take part, ascending index
   std::vector<AABB> fat_bounds;   ///< scratch: their fattened bounds, parallel to proxies
+  std::vector<uint8_t> proxy_dynamic;  ///< scratch: 1 when on a dynamic body, parallel to proxies
+  std::vector<AABB> shape_fat;    ///< by shape index: fattened bounds (valid where shape_kind ≠ none)
+  std::vector<uint8_t> shape_kind;     ///< by shape index: k_proxy_*
+  std::vector<uint64_t> unsorted; ///< scratch: emitted keys in the structure's visiting order
+  std::vector<int32_t> counts;    ///< scratch: counting sort by lower index
+  SweepAndPrune sap;
+  Grid grid;
+  DynamicTree tree;
+  BroadPhaseStats stats;          ///< the last update's figures
+  int64_t candidate_count = 0;    ///< the update's exact tests so far (clamped into stats)
+  CustomFilterFn custom_filter = nullptr;
+  void* custom_context = nullptr;
 };
 
 /// True when two shapes may form a contact by their filters alone (Box2D's
@@ -60,7 +155,44 @@ bool filters_should_collide(const Filter& a, const Filter& b);
 /// agree.
 bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b);
 
-/// Recomputes world->broad_phase.pairs (see the contract above).
+/// Recomputes world->broad_phase.pairs (see the contract above) with the
+/// world's broad-phase kind, and its stats (touching_pairs excepted).
 void broad_phase_update_pairs(World* world);
+
+/// Drops all persistent broad-phase state (sorted end points, grid, tree),
+/// keeping buffer capacity, so the next update rebuilds from the shapes. A
+/// snapshot restore and a change of broad-phase kind call it. Never fails.
+void broad_phase_reset(World* world);
+
+/// Grows the broad phase's buffers (outside the step) so that the next steps
+/// of a scene whose counts drift a little do not allocate.
+void broad_phase_reserve_headroom(World* world);
+
+// Shared by the implementations (broad_phase.cpp).
+
+/// The candidate (a, b), a ≠ b, in either order: unless both are non-dynamic,
+/// counts it, applies the exact fattened-box test and the filters, and
+/// appends its key to bp.unsorted. The caller guarantees each unordered pair
+/// is offered at most once per update.
+void broad_phase_emit_candidate(World* world, int32_t a, int32_t b);
+
+/// The tail of broad_phase_emit_candidate for a caller that has already
+/// skipped non-dynamic pairs, counted the candidate and found the fattened
+/// boxes (bp.shape_fat) overlapping: the filters, then the key.
+void broad_phase_emit_overlapping(World* world, int32_t a, int32_t b);
+
+// The structures (one file each). Each fills bp.unsorted from the proxies
+// listed by the pre-pass (bp.proxies, bp.shape_fat, bp.shape_kind).
+void sap_update(World* world);
+void sap_reset(SweepAndPrune* sap);
+void grid_update(World* world);
+void tree_update(World* world);
+void tree_reset(DynamicTree* tree);
+/// Every live leaf's shape whose tree box overlaps `box`, appended to *out
+/// (any order). Tree boxes contain the fattened shape bounds.
+void tree_query(const DynamicTree& tree, AABB box, std::vector<int32_t>* stack, std::vector<int32_t>* out);
+/// Checks the tree's structure (parents, heights, boxes containing children);
+/// for tests. Returns the number of leaves, or −1 when broken.
+int32_t tree_validate(const DynamicTree& tree);
 
 }  // namespace tandem

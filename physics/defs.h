@@ -25,10 +25,13 @@ namespace tandem {
 /// The value default_*_def() writes into internal_cookie ("TAND").
 inline constexpr int32_t k_def_cookie = 0x54414E44;
 
-/// Which broad phase a world uses. Only the naive all-pairs one exists yet;
-/// the broad-phase issue adds the others.
+/// Which broad phase a world uses. Every kind reports exactly the same pair
+/// list (broad_phase.h), so the choice changes speed, never results.
 enum class BroadPhaseKind : int32_t {
-  naive = 0,  ///< every shape AABB against every other, in shape id order
+  naive = 0,            ///< every shape AABB against every other, in shape id order (O(n²))
+  sweep_and_prune = 1,  ///< persistent sorted end points on x, insertion sort (still scenes)
+  grid = 2,             ///< uniform hash grid sized by the largest moving proxy (many similar shapes)
+  tree = 3,             ///< dynamic AABB tree with fattened boxes (mixed sizes)
 };
 
 /// How a body moves.
@@ -56,6 +59,8 @@ struct WorldDef {
   AABB bounds;                     ///< bodies must start and stay inside, m; default ±k_max_world_coordinate;
                                    ///< must lie within ±k_max_world_coordinate with lower < upper
   bool enable_sleep = true;        ///< let resting islands sleep (0.5 s below 0.05 m/s and 2°/s); default true
+  bool enable_continuous = true;   ///< stop fast dynamic bodies at their time of impact against static and
+                                   ///< kinematic shapes (bullets: all shapes); default true (continuous.cpp)
   BroadPhaseKind broad_phase = BroadPhaseKind::naive;  ///< default naive
   uint64_t user_data = 0;          ///< any integer, for the application; default 0
   int32_t internal_cookie = 0;     ///< set by default_world_def(); do not touch
@@ -79,8 +84,8 @@ struct BodyDef {
   bool is_awake = true;                   ///< start awake (a body created asleep starts at rest: its
                                           ///< velocity is ignored); default true
   bool fixed_rotation = false;            ///< never rotate (infinite rotational inertia); default false
-  bool is_bullet = false;                 ///< continuous collision against dynamic bodies (later task);
-                                          ///< default false
+  bool is_bullet = false;                 ///< when fast, also swept against dynamic bodies, not only
+                                          ///< static and kinematic ones (continuous.cpp); default false
   bool is_enabled = true;                 ///< take part in the simulation; default true
   int32_t internal_cookie = 0;            ///< set by default_body_def(); do not touch
 };

@@ -220,6 +220,8 @@ Status world_set_restitution_threshold(WorldId world, Q32 threshold);
 Status world_set_max_linear_speed(WorldId world, Q32 max_linear_speed);
 /// Turns sleeping on or off for the whole world.
 Status world_enable_sleep(WorldId world, bool enable);
+/// Turns continuous collision (WorldDef::enable_continuous) on or off.
+Status world_enable_continuous(WorldId world, bool enable);
 /// Sets the world's user data (any integer).
 Status world_set_user_data(WorldId world, uint64_t user_data);
 /// The world's user data; 0 for an invalid handle.
@@ -230,6 +232,39 @@ WorldCounters world_counters(WorldId world);
 /// to out_ids (may be null when capacity is 0); returns the number of live
 /// bodies (0 for an invalid handle).
 int32_t world_bodies(WorldId world, BodyId* out_ids, int32_t capacity);
+
+/// Broad-phase figures of the last step (broad_phase.h). Every broad phase
+/// reports the same `pairs` for the same world; the others describe its work.
+struct BroadPhaseStats {
+  int32_t proxies = 0;          ///< shapes that took part (live, not sensors, on enabled bodies)
+  int32_t candidate_pairs = 0;  ///< pairs the structure tested with the exact fattened-bounds test
+  int32_t pairs = 0;            ///< pairs emitted to the contact stage (≤ candidate_pairs for all but naive)
+  int32_t touching_pairs = 0;   ///< emitted pairs whose manifold has ≥ 1 point (false-positive ratio
+                                ///< = 1 − touching_pairs / pairs)
+  uint64_t update_nanoseconds = 0;  ///< wall time of the broad phase (steady clock); timing only, it never
+                                    ///< feeds back into the simulation
+};
+
+/// Selects the broad phase used from the next step on (any BroadPhaseKind).
+/// Every kind gives the same pairs, so results are bit-identical whichever
+/// is used; only speed differs. Refused inside world_step() and for an
+/// unknown kind.
+Status world_set_broad_phase(WorldId world, BroadPhaseKind kind);
+/// The broad phase in use; naive for an invalid handle.
+BroadPhaseKind world_get_broad_phase(WorldId world);
+/// The last step's broad-phase figures; zeroes before the first step and for
+/// an invalid handle.
+BroadPhaseStats world_get_broad_phase_stats(WorldId world);
+
+/// A user collision filter: return false to keep shapes a and b (a's index
+/// below b's) from forming a contact. Called by the broad phase for pairs
+/// that passed the category/mask/group test, at most once per pair per step.
+/// It MUST be deterministic — a pure function of its arguments and of data
+/// that every peer holds identically — and must not call into the world.
+using CustomFilterFn = bool (*)(ShapeId a, ShapeId b, void* context);
+/// Installs a custom filter (null removes it); `context` is passed back
+/// unchanged. Refused inside world_step().
+Status world_set_custom_filter(WorldId world, CustomFilterFn filter, void* context);
 
 // ---------------------------------------------------------------------------
 // Bodies

@@ -91,7 +91,8 @@ Status validate_world_def(const WorldDef& def, const char* function) {
                        std::string(function) + ": bounds [" + format_vec2(b.lower) + ", " + format_vec2(b.upper) +
                            "] m must have lower < upper and lie within ±" + q32_text(m) + " m");
   }
-  if (def.broad_phase != BroadPhaseKind::naive) {
+  if (static_cast<int32_t>(def.broad_phase) < static_cast<int32_t>(BroadPhaseKind::naive) ||
+      static_cast<int32_t>(def.broad_phase) > static_cast<int32_t>(BroadPhaseKind::tree)) {
     return make_status(StatusCode::invalid_argument, std::string(function) + ": unknown broad_phase " +
                                                          std::to_string(static_cast<int32_t>(def.broad_phase)));
   }
@@ -354,6 +355,10 @@ Status world_enable_sleep(WorldId id, bool enable) {
   return s;
 }
 
+Status world_enable_continuous(WorldId id, bool enable) {
+  return change_settings(id, "world_enable_continuous", [&](WorldDef* d) { d->enable_continuous = enable; });
+}
+
 Status world_set_user_data(WorldId id, uint64_t user_data) {
   return change_settings(id, "world_set_user_data", [&](WorldDef* d) { d->user_data = user_data; });
 }
@@ -440,6 +445,7 @@ StepResult world_step(WorldId id, Q32 time_step) {
   }
   stage_restitution(world, context);
   stage_store_impulses(world, context);
+  stage_continuous(world, context);  // fast bodies stop at their time of impact (continuous.cpp)
   stage_finalize_bodies(world, context);
   stage_update_sleep(world, context);  // sleep timers and islands (island.cpp)
   events_after_step(world);  // contact, hit, sensor and move events (events.cpp)
@@ -448,6 +454,7 @@ StepResult world_step(WorldId id, Q32 time_step) {
   // step spilled to the heap.
   arena_grow(&world->arena);
   reserve_contact_headroom(world);
+  broad_phase_reserve_headroom(world);
   events_reserve_headroom(world);
   world->last_solver_body_count = context->solver_body_count;
   ++world->step_count;

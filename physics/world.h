@@ -24,6 +24,7 @@
 //     relax                    constraints without bias (+2 passes where a bounce latched)
 //   restitution                empty: bounces are solved inside the sub-steps (contact_solver.cpp)
 //   store_impulses             for warm starting; frees the constraints
+//   continuous                 fast bodies stop at their first time of impact (continuous.cpp)
 //   finalize_bodies            write back, clear forces, leave-bounds check, shape AABBs
 //   update_sleep               sleep timers, union-find islands, islands to sleep (island.cpp)
 //
@@ -78,9 +79,15 @@ struct StepContext {
   Softness contact_softness;           ///< dynamic–dynamic contacts
   Softness static_softness;            ///< contacts with a body of zero inverse mass (twice the stiffness)
   int32_t constraint_count = 0;
-  ContactConstraint* constraints = nullptr;  ///< in contact order
+  ContactConstraint* constraints = nullptr;  ///< by graph colour, then contact order
+  int32_t colour_count = 0;            ///< colours used by the last prepare, overflow included
+  int32_t overflow_constraint_count = 0;  ///< constraints in the overflow group
   int32_t* bounce_marks = nullptr;     ///< per solver index: last sub-step with a latched bounce, or −1
   bool bounced_this_sub_step = false;  ///< some point latched a bounce in the current sub-step
+
+  // Continuous collision (continuous.cpp).
+  int32_t fast_body_count = 0;         ///< bodies that moved more than half their thinnest extent
+  int32_t continuous_hits = 0;         ///< fast bodies stopped at a time of impact
 };
 
 /// A simulation world.
@@ -136,6 +143,13 @@ Status make_status(StatusCode code, std::string message);
 // ---------------------------------------------------------------------------
 // Step stages (solver.cpp)
 // ---------------------------------------------------------------------------
+
+/// The thinnest dimension and farthest point (from local_center) of a body's
+/// shapes, m; both 0 without shapes (continuous.cpp).
+void compute_body_extents(const World& world, int32_t body_index, Vec2 local_center, Q32* out_min, Q32* out_max);
+/// Continuous collision: fast bodies (bullets also against dynamic bodies)
+/// stop at their first time of impact (continuous.cpp).
+void stage_continuous(World* world, StepContext* context);
 
 /// Contacts from broad-phase pairs and narrow phase. Empty until the contact
 /// task.

@@ -1,10 +1,12 @@
 // tandem — the command line.
 //
-// Subcommands so far:
-//   tandem demo                 what the fixed-point library does, against exact values
+// Subcommands here:
+//   tandem fixed-demo           what the fixed-point library does, against exact values
 //   tandem fixed FUNC ARGS...   evaluate one fixed-point function and show every bit
 //   tandem version              engine and format versions
-// Physics, replay and rendering commands join as their modules land.
+// and, registered by their families (cli.h): run, render, demo (cmd_scene.cpp),
+// record, replay, verify, diff, synctest (cmd_replay.cpp), bench (cmd_bench.cpp).
+// Usage errors exit with 2 (CLI11's own codes are mapped), --help with 0.
 //
 // Doubles appear here only to print exact-value oracles; nothing computed in
 // floating point flows back into fixed-point values.
@@ -215,8 +217,7 @@ int run_demo() {
   std::printf("\n5. Physics preview (physics/): integer-only soft-step solver\n");
   print_rule();
   run_physics_preview();
-  std::printf("\nNext: replay files, per-tick hashes and the full command line (run, record, verify, render) land\n"
-              "with their issues; see README.md.\n");
+  std::printf("\nNext: tandem demo (a scene run, hashed and drawn), tandem run / render SCENE; see README.md.\n");
   return 0;
 }
 
@@ -299,10 +300,12 @@ int run_fixed(const std::string& func, const std::vector<std::string>& args, boo
 int main(int argc, char** argv) {
   CLI::App app{"tandem: deterministic fixed-point 2D physics"};
   app.require_subcommand(1);
-  app.footer("Examples:\n  tandem demo\n  tandem fixed sqrt 2\n  tandem fixed atan2 -- -3 -4\n  tandem fixed mul 1.5 2.25 --q16");
+  app.fallthrough();  // --json / --quiet may follow the subcommand
+  app.footer("Examples:\n  tandem demo\n  tandem run scenes/pyramid.json\n  tandem render scenes/rain.json --every 60 -o out\n"
+             "  tandem fixed sqrt 2\n  tandem fixed atan2 -- -3 -4\n\nExit codes: 0 ok, 1 a check failed, 2 bad usage or input.");
 
-  auto* demo = app.add_subcommand("demo", "Show what Tandem computes, against exact values");
-  demo->footer("Example:\n  tandem demo");
+  auto* demo = app.add_subcommand("fixed-demo", "Show what the fixed-point core computes, against exact values");
+  demo->footer("Example:\n  tandem fixed-demo");
 
   auto* fixed = app.add_subcommand("fixed", "Evaluate one fixed-point function exactly and show its bits");
   std::string func;
@@ -323,7 +326,16 @@ int main(int argc, char** argv) {
   tandem::cli::register_replay_commands(app, options, &commands);
   tandem::cli::register_bench_commands(app, options, &commands);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the message to stderr
+    return 2;
+  }
   for (const tandem::cli::Command& command : commands)
     if (command.app->parsed()) return command.run();
   if (demo->parsed()) return run_demo();

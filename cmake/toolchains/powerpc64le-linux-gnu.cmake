@@ -1,0 +1,15 @@
+# powerpc64le-linux-gnu: Debian's g++-powerpc64le-linux-gnu, run under qemu-user (qemu-ppc64le).
+# CMAKE_CROSSCOMPILING_EMULATOR lets catch_discover_tests and ctest run the
+# cross-built tests; -L points qemu at the target's loader and libraries.
+# Debian's multiarch cross compilers also search /usr/include, so the
+# header-only Catch2 and xxHash need no extra include directory.
+set(CMAKE_SYSTEM_NAME Linux)
+set(CMAKE_SYSTEM_PROCESSOR ppc64le)
+set(CMAKE_C_COMPILER powerpc64le-linux-gnu-gcc)
+set(CMAKE_CXX_COMPILER powerpc64le-linux-gnu-g++)
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-ppc64le -L /usr/powerpc64le-linux-gnu)
+set(CMAKE_FIND_ROOT_PATH /usr/powerpc64le-linux-gnu)
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)

@@ -1,0 +1,13 @@
+// wasi-run.mjs WASM [ARGS...] — runs a wasm32-wasi program under node's WASI
+// (the emulator of cmake/toolchains/wasm32-wasi.cmake): arguments and the
+// environment passed through, the host's "/" preopened as "/", the program's
+// exit status returned.
+import { WASI } from 'node:wasi';
+import { readFile } from 'node:fs/promises';
+
+const [wasmPath, ...args] = process.argv.slice(2);
+const wasi = new WASI({ version: 'preview1', args: [wasmPath, ...args], env: process.env,
+                        preopens: { '/': '/' }, returnOnExit: true });
+const module = await WebAssembly.compile(await readFile(wasmPath));
+const instance = await WebAssembly.instantiate(module, wasi.getImportObject());
+process.exitCode = wasi.start(instance);

@@ -1,0 +1,241 @@
+// broad_phase_grid.cpp — Max Grid (the hand-built-vs-engine report, 3.2 and
+// 5.11.2), rebuilt from scratch every update: no persistent state, so it
+// suits scenes where everything moves.
+//
+// Cell size S: the largest extent (max of width, height of the fattened box)
+// among the dynamic proxies that are not outliers. Every proxy with extent ≤
+// S goes into the ONE cell holding its box centre; two such proxies can only
+// overlap when their centres are at most S apart on each axis, i.e. in the
+// same or adjacent cells. So each proxy looks at its own cell and its
+// neighbours; to find each pair once it looks at its own cell (entries after
+// it) and the four "forward" neighbours (+1,0), (−1,+1), (0,+1), (+1,+1) —
+// for every pair of adjacent cells exactly one is the other's forward
+// neighbour. Only pairs with a dynamic proxy matter, so static and kinematic
+// proxies do not set S.
+//
+// Outliers: dynamic proxies larger than 4× the 15/16-quantile power-of-two
+// extent class (so one huge box cannot turn the grid into one cell), every
+// static/kinematic proxy larger than S (grounds, walls), and anything beyond
+// ±2^54 raw (≈ 4.2e6 m, outside any world; keeps cell arithmetic far from
+// overflow). Each outlier scans the cells its box can reach (its box grown by
+// S/2, clamped to the occupied cell range), or every grid entry when that is
+// fewer, then the outliers after it. Cost O(outliers × min(cells, n)).
+//
+// Cells: integer coordinates floor((lower + upper) / 2S) of the raw Q32 sums
+// (one division per axis per proxy; exact). Packed (uint32 cx, uint32 cy)
+// keys are hashed by a fixed 64-bit mixer into a power-of-two table ≥ 2× the
+// proxies; a counting sort by bucket places the entries (ascending shape
+// index inside a bucket), and a lookup compares the full cell key, so hash
+// collisions only cost time. Nothing depends on addresses or on a hash map's
+// iteration order.
+//
+// Rejected: a dense 2D array (sized by the scene's spread, unbounded memory
+// for sparse worlds); inserting each proxy into every cell its box overlaps
+// (duplicates to remove).
+#include <bit>
+
+#include "physics/broad_phase.h"
+#include "physics/world.h"
+
+namespace tandem {
+
+namespace {
+
+constexpr int64_t k_grid_coordinate_limit = int64_t{1} << 54;  // raw; larger boxes are outliers
+constexpr int64_t k_min_cell_size = int64_t{1} << 24;          // raw (≈ 0.004 m)
+// Grid cell coordinates stay within ±2^30 (|lower + upper| < 2^55, cell ≥
+// 2^25), so cx = −2^31 never occurs: it marks outliers.
+constexpr uint64_t k_outlier_cell = 0x8000000080000000ull;
+
+uint64_t box_extent(const AABB& b) {
+  const uint64_t w = static_cast<uint64_t>(b.upper.x.raw) - static_cast<uint64_t>(b.lower.x.raw);
+  const uint64_t h = static_cast<uint64_t>(b.upper.y.raw) - static_cast<uint64_t>(b.lower.y.raw);
+  return w > h ? w : h;
+}
+
+bool within_limit(Q32 v) { return v.raw > -k_grid_coordinate_limit && v.raw < k_grid_coordinate_limit; }
+
+int64_t floor_div(int64_t a, int64_t d) {
+  int64_t q = a / d;
+  if (a % d < 0) --q;
+  return q;
+}
+
+uint64_t pack_cell(int64_t cx, int64_t cy) {
+  return (static_cast<uint64_t>(static_cast<uint32_t>(cx)) << 32) | static_cast<uint32_t>(cy);
+}
+
+uint32_t cell_bucket(uint64_t key, uint32_t bits) {
+  key ^= key >> 33;
+  key *= 0xFF51AFD7ED558CCDull;
+  key ^= key >> 33;
+  key *= 0xC4CEB9FE1A85EC53ull;
+  key ^= key >> 33;
+  return static_cast<uint32_t>(key >> (64u - bits));
+}
+
+int64_t clamp_coordinate(int64_t v) {
+  const int64_t lim = int64_t{1} << 56;
+  return v < -lim ? -lim : (v > lim ? lim : v);
+}
+
+/// The candidate test on two grid entries (kind skip, count, box, filters).
+inline void test_entries(World* world, const GridEntry& a, const GridEntry& b, int64_t* candidates) {
+  if ((a.dynamic | b.dynamic) == 0) return;
+  ++*candidates;
+  if (aabb_overlaps(a.box, b.box)) broad_phase_emit_overlapping(world, a.shape, b.shape);
+}
+
+}  // namespace
+
+void grid_update(World* world) {
+  BroadPhase& bp = world->broad_phase;
+  Grid& g = bp.grid;
+  const size_t n = bp.proxies.size();
+  g.cell_size = 0;
+  g.outliers.clear();
+  g.entries.clear();
+  if (n < 2) return;
+
+  // Cell size from the dynamic proxies' extents, ignoring outsized ones.
+  int32_t histogram[65] = {};
+  int32_t dynamic_count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (bp.proxy_dynamic[i] == 0) continue;
+    ++histogram[std::bit_width(box_extent(bp.fat_bounds[i]))];
+    ++dynamic_count;
+  }
+  if (dynamic_count == 0) return;  // no pair can have a dynamic shape
+  const int32_t wanted = dynamic_count - dynamic_count / 16;
+  int32_t bucket = 0;
+  for (int32_t seen = 0; bucket < 65; ++bucket) {
+    seen += histogram[bucket];
+    if (seen >= wanted) break;
+  }
+  // Every extent in classes ≤ bucket is < 2^bucket; allow 4× that.
+  const uint64_t typical_limit = bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+  uint64_t size = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (bp.proxy_dynamic[i] == 0) continue;
+    const uint64_t e = box_extent(bp.fat_bounds[i]);
+    if (e <= typical_limit && e > size) size = e;
+  }
+  if (size < static_cast<uint64_t>(k_min_cell_size)) size = static_cast<uint64_t>(k_min_cell_size);
+  if (size > static_cast<uint64_t>(k_grid_coordinate_limit)) size = static_cast<uint64_t>(k_grid_coordinate_limit);
+  const int64_t cell = static_cast<int64_t>(size);
+  const int64_t span = 2 * cell;  // cells are indexed by lower + upper = 2 × centre
+  g.cell_size = cell;
+
+  // Cells of the grid proxies; outliers aside.
+  g.proxy_cell.resize(n);
+  g.proxy_bucket.resize(n);
+  size_t grid_count = 0;
+  int64_t min_cx = INT64_MAX, max_cx = INT64_MIN, min_cy = INT64_MAX, max_cy = INT64_MIN;
+  for (size_t i = 0; i < n; ++i) {
+    const AABB& b = bp.fat_bounds[i];
+    if (box_extent(b) > size || !within_limit(b.lower.x) || !within_limit(b.lower.y) || !within_limit(b.upper.x) ||
+        !within_limit(b.upper.y)) {
+      g.proxy_cell[i] = k_outlier_cell;
+      g.outliers.push_back(static_cast<int32_t>(i));
+      continue;
+    }
+    const int64_t cx = floor_div(b.lower.x.raw + b.upper.x.raw, span);
+    const int64_t cy = floor_div(b.lower.y.raw + b.upper.y.raw, span);
+    min_cx = cx < min_cx ? cx : min_cx;
+    max_cx = cx > max_cx ? cx : max_cx;
+    min_cy = cy < min_cy ? cy : min_cy;
+    max_cy = cy > max_cy ? cy : max_cy;
+    g.proxy_cell[i] = pack_cell(cx, cy);
+    ++grid_count;
+  }
+
+  // Counting sort of the grid proxies into hash buckets.
+  const uint32_t bits = static_cast<uint32_t>(std::bit_width(2 * grid_count + 15));
+  g.bucket_bits = bits;
+  const size_t table = size_t{1} << bits;
+  g.bucket_start.assign(table + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (g.proxy_cell[i] == k_outlier_cell) continue;
+    const uint32_t b = cell_bucket(g.proxy_cell[i], bits);
+    g.proxy_bucket[i] = b;
+    ++g.bucket_start[b + 1];
+  }
+  for (size_t b = 1; b <= table; ++b) g.bucket_start[b] += g.bucket_start[b - 1];
+  g.entries.resize(grid_count);
+  for (size_t i = 0; i < n; ++i) {
+    if (g.proxy_cell[i] == k_outlier_cell) continue;
+    const uint32_t slot = g.bucket_start[g.proxy_bucket[i]]++;
+    g.entries[slot] = GridEntry{bp.fat_bounds[i], g.proxy_cell[i], bp.proxies[i], bp.proxy_dynamic[i]};
+  }
+  for (size_t b = table; b > 0; --b) g.bucket_start[b] = g.bucket_start[b - 1];
+  g.bucket_start[0] = 0;
+
+  const GridEntry* entries = g.entries.data();
+  const uint32_t* starts = g.bucket_start.data();
+  int64_t candidates = 0;
+
+  // Grid against grid: own cell (later entries) and the forward neighbours.
+  static constexpr int64_t k_forward[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+  for (size_t b = 0; b < table; ++b) {
+    const uint32_t end = starts[b + 1];
+    for (uint32_t ei = starts[b]; ei < end; ++ei) {
+      const GridEntry& e = entries[ei];
+      for (uint32_t ej = ei + 1; ej < end; ++ej) {
+        if (entries[ej].cell == e.cell) test_entries(world, e, entries[ej], &candidates);
+      }
+      const int64_t cx = static_cast<int32_t>(static_cast<uint32_t>(e.cell >> 32));
+      const int64_t cy = static_cast<int32_t>(static_cast<uint32_t>(e.cell & 0xFFFFFFFFu));
+      for (const auto& d : k_forward) {
+        const uint64_t key = pack_cell(cx + d[0], cy + d[1]);
+        const uint32_t nb = cell_bucket(key, bits);
+        const uint32_t nend = starts[nb + 1];
+        for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
+          if (entries[ej].cell == key) test_entries(world, e, entries[ej], &candidates);
+        }
+      }
+    }
+  }
+
+  // Outliers against the grid, then against later outliers.
+  const size_t outlier_count = g.outliers.size();
+  for (size_t k = 0; k < outlier_count; ++k) {
+    const size_t i = static_cast<size_t>(g.outliers[k]);
+    const GridEntry o{bp.fat_bounds[i], k_outlier_cell, bp.proxies[i], bp.proxy_dynamic[i]};
+    if (grid_count > 0) {
+      // A grid proxy overlapping o has lower + upper within [2·o.lower − S, 2·o.upper + S].
+      const int64_t lx = clamp_coordinate(o.box.lower.x.raw), ux = clamp_coordinate(o.box.upper.x.raw);
+      const int64_t ly = clamp_coordinate(o.box.lower.y.raw), uy = clamp_coordinate(o.box.upper.y.raw);
+      int64_t x0 = floor_div(2 * lx - cell, span), x1 = floor_div(2 * ux + cell, span);
+      int64_t y0 = floor_div(2 * ly - cell, span), y1 = floor_div(2 * uy + cell, span);
+      x0 = x0 < min_cx ? min_cx : x0;
+      x1 = x1 > max_cx ? max_cx : x1;
+      y0 = y0 < min_cy ? min_cy : y0;
+      y1 = y1 > max_cy ? max_cy : y1;
+      if (x0 <= x1 && y0 <= y1) {
+        const uint64_t cells = static_cast<uint64_t>(x1 - x0 + 1) * static_cast<uint64_t>(y1 - y0 + 1);
+        if (cells <= static_cast<uint64_t>(grid_count)) {
+          for (int64_t cx = x0; cx <= x1; ++cx) {
+            for (int64_t cy = y0; cy <= y1; ++cy) {
+              const uint64_t key = pack_cell(cx, cy);
+              const uint32_t nb = cell_bucket(key, bits);
+              const uint32_t nend = starts[nb + 1];
+              for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
+                if (entries[ej].cell == key) test_entries(world, o, entries[ej], &candidates);
+              }
+            }
+          }
+        } else {
+          for (size_t ej = 0; ej < grid_count; ++ej) test_entries(world, o, entries[ej], &candidates);
+        }
+      }
+    }
+    for (size_t k2 = k + 1; k2 < outlier_count; ++k2) {
+      const size_t j = static_cast<size_t>(g.outliers[k2]);
+      const GridEntry p{bp.fat_bounds[j], k_outlier_cell, bp.proxies[j], bp.proxy_dynamic[j]};
+      test_entries(world, o, p, &candidates);
+    }
+  }
+  bp.candidate_count += candidates;
+}
+
+}  // namespace tandem

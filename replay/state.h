@@ -1,0 +1,168 @@
+// state.h — the canonical encoding of a world's state: snapshot, restore,
+// hash, decode and diff.
+//
+// WHAT IS ENCODED: everything that can change a later tick or a later query.
+//   header    magic "TNDS", format version (k_state_format_version), kind (0)
+//   world     WorldDef (every field but the cookie), step count, the last
+//             step's simulated body count
+//   pools     body and shape pools: capacity, then per slot generation and
+//             alive flag. The free list is NOT stored: IdPool hands out the
+//             lowest free slot (id_pool.h), so the free set — hence every
+//             future allocation — follows from the alive flags
+//   bodies    per live body, ascending index: Body (type, shape list head and
+//             count, mass, inertia, sleep timer, sleep island, user data,
+//             flags) then BodySim (pose, centres, velocities, pending force
+//             and torque, inverse mass and inertia, damping, gravity scale)
+//   shapes    per live shape, ascending index: body, list links, type,
+//             materials, filter, user data, world AABB, flags, then the
+//             geometry of its type only (polygon: `count` vertices and normals)
+//   contacts  World::contacts in their (sorted) order: shapes, generations,
+//             bodies, flags, mixed materials, manifold (normal, point_count
+//             points with feature ids) and the points' warm-start impulses
+//   pairs     the touching pairs and sensor overlaps of the last step (they
+//             decide the next step's begin/end events)
+// NOT encoded: scratch (arena, step context, contact scratch, the last step's
+// event lists — empty after a restore until the next step), dead slots' stale
+// records (reset to defaults on restore, as destroy does), polygon entries
+// past `count`, inactive geometry variants, and the broad phase, whose output
+// depends only on the shapes by contract (broad_phase.h): restore calls
+// broad_phase_reset().
+//
+// FORMAT. Explicit little-endian (replay/bytes.h): u8/u32/u64/i32/i64 as
+// such, Q32 as its raw int64, bools as one byte 0/1, Vec2 as x, y. Each
+// section starts with a 4-byte ASCII tag ("WRLD", "BPOL", "BODY", "SPOL",
+// "SHAP", "CONT", "TUCH", "SENS") so a corrupt image fails near the damage.
+// Nothing depends on struct layout, padding, host endianness or addresses.
+// Field order is defined once (state.cpp: one visitor per record drives
+// encoding, size, decoding and the named-field decoding used by diffs), so
+// the four can never disagree.
+//
+// RESTORE decodes the whole image into scratch, validates it (ranges, enum
+// values, index ranges, shape lists consistent with bodies, contacts sorted,
+// nothing left over) and only then replaces the world's state, so a refused
+// image leaves the world untouched. Handles stay valid: indices, generations
+// and alive flags are those of the snapshot.
+//
+// HASH: XXH3-64 (seed 0) of the canonical encoding. Per-body hashes cover one
+// body's record followed by its shapes' records (the same bytes as in the
+// full encoding), so peers can locate a divergence without shipping state.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "physics/tandem.h"
+
+namespace tandem {
+
+/// The version written into and required from every state image.
+inline constexpr uint32_t k_state_format_version = 1;
+
+/// The 4 magic bytes at the start of every state image.
+inline constexpr uint8_t k_state_magic[4] = {'T', 'N', 'D', 'S'};
+
+/// Replaces *out with the canonical encoding of the world's state (see the
+/// file comment). Refuses an invalid world handle and a locked world (inside
+/// world_step the state is mid-update); *out is unchanged then.
+Status encode_world_state(WorldId world, std::vector<uint8_t>* out);
+
+/// The exact size in bytes of the world's encoding, or 0 for an invalid
+/// world handle.
+size_t world_snapshot_size(WorldId world);
+
+/// Writes the world's encoding into buffer[0, capacity) and sets *written to
+/// its size. With capacity < world_snapshot_size(world) nothing is written
+/// beyond the capacity, *written is the needed size and the status is
+/// capacity_exceeded (its message names the needed size). Refuses an invalid
+/// or locked world. `written` may be null.
+Status world_snapshot(WorldId world, uint8_t* buffer, size_t capacity, size_t* written);
+
+/// Appends the world's encoding to *out (existing bytes kept).
+Status world_snapshot_append(WorldId world, std::vector<uint8_t>* out);
+
+/// Replaces all of the world's state with a state image (from
+/// encode_world_state / world_snapshot of this or another world). Refuses an
+/// invalid or locked world, a wrong magic or version, and truncated,
+/// inconsistent or trailing data, with a message naming the byte offset and
+/// what was expected there; on any refusal the world is unchanged. After a
+/// restore every later step is bit-identical to the run the image came from,
+/// and handles of that run are valid in this world (same indices and
+/// generations; world handle: this world's).
+Status world_restore(WorldId world, const uint8_t* data, size_t size);
+
+/// Creates a world (create_world(default_world_def())) and restores the image
+/// into it; on failure the new world is destroyed and the status says why.
+Result<WorldId> create_world_from_snapshot(const uint8_t* data, size_t size);
+
+/// XXH3-64 of the world's canonical encoding; 0 for an invalid or locked
+/// world. Allocation-free once the calling thread's scratch buffer has grown.
+uint64_t world_state_hash(WorldId world);
+
+/// XXH3-64 of one body's record followed by its shapes' records (ascending
+/// shape index), as encoded in the full image; 0 for an invalid body.
+uint64_t body_state_hash(BodyId body);
+
+/// body_state_hash of every body slot in index order into *out (resized to
+/// the body pool's capacity); dead slots get 0. Refuses an invalid world.
+Status world_body_hashes(WorldId world, std::vector<uint64_t>* out);
+
+// ---------------------------------------------------------------------------
+// Generic decoding and diffs
+// ---------------------------------------------------------------------------
+
+/// One named value of a decoded record.
+struct DecodedField {
+  std::string name;   ///< "position.x", "linear_velocity.y", "point[1].normal_impulse"
+  int64_t value = 0;  ///< the raw integer (Q32: raw = value · 2^32; bools 0/1; enums their number)
+  bool is_q32 = false;  ///< true when value is a Q32.32 raw value
+};
+
+/// One record of a decoded state, in canonical order.
+struct DecodedRecord {
+  std::string kind;        ///< "header", "world", "body_slot", "body", "shape_slot", "shape",
+                           ///< "contact", "touching", "sensor_overlap"
+  int64_t index = 0;       ///< slot / body / shape index; contacts and pairs: lower shape index
+  int64_t index2 = -1;     ///< contacts and pairs: the higher shape index; −1 otherwise
+  uint32_t generation = 0; ///< bodies and shapes: the slot's generation; 0 otherwise
+  std::vector<DecodedField> fields;
+};
+
+/// A state image decoded into named records (for diffs and tools).
+struct DecodedState {
+  uint32_t version = 0;
+  std::vector<DecodedRecord> records;
+};
+
+/// Decodes and validates a state image (the same checks as world_restore)
+/// into named records. Errors name the byte offset and what was expected.
+Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out);
+
+/// The first difference between two decoded states, in canonical order.
+struct StateDifference {
+  bool differs = false;       ///< false: the states are identical
+  std::string kind;           ///< record kind ("body")
+  int64_t index = 0;          ///< record index
+  int64_t index2 = -1;        ///< second key (contacts, pairs) or −1
+  uint32_t generation = 0;
+  std::string field;          ///< differing field; empty when a record is missing on one side
+  int64_t value_a = 0;        ///< raw values
+  int64_t value_b = 0;
+  bool is_q32 = false;
+  bool missing_in_a = false;  ///< the record exists only in b
+  bool missing_in_b = false;  ///< the record exists only in a
+  /// "body 3 (generation 1) linear_velocity.x: a = 1.5 (raw 6442450944), b =
+  /// ..." or "identical"; Q32 values are printed as exact decimals.
+  std::string describe() const;
+};
+
+/// Compares two decoded states record by record and field by field, in
+/// canonical order, and returns the first difference (or differs = false).
+StateDifference diff_world_states(const DecodedState& a, const DecodedState& b);
+
+/// Exact decimal text of a Q32 raw value ("1.5", "-0.0000000002328306436538696289062"),
+/// for diffs and tools.
+std::string q32_raw_text(int64_t raw);
+
+}  // namespace tandem

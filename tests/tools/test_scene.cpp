@@ -1,0 +1,230 @@
+// test_scene.cpp — the scene loader (tools/scene): exact numbers, errors with
+// JSON paths, generators, inputs, the bundled scenes, and the format document.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "replay/state.h"
+#include "scene/scene.h"
+
+using namespace tandem;
+using namespace tandem::scene;
+
+namespace {
+
+const std::string k_source = TANDEM_SOURCE_DIR;
+
+Scene load_ok(const std::string& text) {
+  Result<Scene> r = load_scene_text(text, "test.json");
+  INFO(r.status.message);
+  REQUIRE(r.ok());
+  return r.value;
+}
+
+std::string load_error(const std::string& text) {
+  Result<Scene> r = load_scene_text(text, "test.json");
+  REQUIRE_FALSE(r.ok());
+  return r.status.message;
+}
+
+// Runs a built scene `ticks` steps with its inputs; returns the state hash.
+uint64_t run_hash(const Scene& scene, int64_t ticks) {
+  Result<BuiltScene> built = build_world(scene);
+  INFO(built.status.message);
+  REQUIRE(built.ok());
+  for (int64_t t = 0; t < ticks; ++t) {
+    const Status in = apply_scene_inputs(built.value, scene, t);
+    INFO(in.message);
+    REQUIRE(in.ok());
+    const StepResult r = world_step(built.value.world, scene.time_step);
+    REQUIRE(r.ok());
+  }
+  const uint64_t h = world_state_hash(built.value.world);
+  REQUIRE(destroy_world(built.value.world).ok());
+  return h;
+}
+
+const char* k_one_ball = R"({
+  "world": {"gravity": [0, -9.81]},
+  "bodies": [
+    {"name": "ground", "shapes": [{"type": "box", "half_width": 10, "half_height": 0.5}]},
+    {"name": "ball", "type": "dynamic", "position": [0.1, 3], "shapes": [{"type": "circle", "radius": 0.25, "friction": 0.1}]}
+  ]
+})";
+
+}  // namespace
+
+TEST_CASE("scene numbers convert exactly from their decimal text") {
+  const Scene s = load_ok(k_one_ball);
+  REQUIRE(s.bodies.size() == 2);
+  // 0.1 is the decimal's nearest Q32.32, not the nearest of the binary64 0.1.
+  CHECK(s.bodies[1].def.position.x.raw == parse_q32("0.1").value.raw);
+  CHECK(s.bodies[1].def.position.x.raw == 429496730);
+  CHECK(s.world.gravity.y.raw == parse_q32("-9.81").value.raw);
+  CHECK(s.bodies[1].shapes[0].def.friction.raw == parse_q32("0.1").value.raw);
+  // Many digits beyond what a double holds still decide the last raw bit.
+  const Scene t = load_ok(R"({"bodies": [{"position": [0.50000000011641532182693481445312500001, 0]}]})");
+  CHECK(t.bodies[0].def.position.x.raw == (int64_t{1} << 31) + 1);
+  const Scene e = load_ok(R"({"bodies": [{"position": [1e-1, 25E-2]}]})");
+  CHECK(e.bodies[0].def.position.x.raw == parse_q32("0.1").value.raw);
+  CHECK(e.bodies[0].def.position.y.raw == parse_q32("0.25").value.raw);
+}
+
+TEST_CASE("scene defaults match the engine defaults") {
+  const Scene s = load_ok(R"({"bodies": [{"shapes": [{"type": "circle", "radius": 1}]}]})");
+  const WorldDef w = default_world_def();
+  CHECK(s.world.gravity == w.gravity);
+  CHECK(s.world.sub_step_count == w.sub_step_count);
+  CHECK(s.step_hz == 60);
+  CHECK(s.time_step == Q32::from_ratio(1, 60));
+  CHECK(s.bodies[0].def.type == BodyType::static_body);
+  CHECK(s.bodies[0].shapes[0].def.density == default_shape_def().density);
+}
+
+TEST_CASE("scene errors name the file, the JSON path and what was expected") {
+  CHECK_THAT(load_error("{\"bodies\": [}"), Catch::Contains("test.json") && Catch::Contains("line 1, column 13"));
+  CHECK_THAT(load_error(R"({"bodies": [{"shapes": [{"type": "circle", "radius": "big"}]}]})"),
+             Catch::Contains("test.json: /bodies/0/shapes/0/radius: expected a number, got a string"));
+  CHECK_THAT(load_error(R"({"bodies": [{"positon": [0, 0]}]})"),
+             Catch::Contains("/bodies/0/positon: unknown key (did you mean \"position\"?)"));
+  CHECK_THAT(load_error(R"({"world": {"sub_steps": 2.5}})"),
+             Catch::Contains("/world/sub_steps: expected an integer in [1, 64] (no fraction or exponent), got 2.5"));
+  CHECK_THAT(load_error(R"({"world": {"sub_steps": 65}})"), Catch::Contains("/world/sub_steps: expected an integer in [1, 64]"));
+  CHECK_THAT(load_error(R"({"bodies": [{"position": [3000000000, 0]}]})"),
+             Catch::Contains("/bodies/0/position/0: expected a number within"));
+  CHECK_THAT(load_error(R"({"bodies": [{"type": "dynamik"}]})"),
+             Catch::Contains("/bodies/0/type: unknown value \"dynamik\" (did you mean \"dynamic\"?)"));
+  CHECK_THAT(load_error(R"({"joints": [{"type": "revolute"}]})"), Catch::Contains("/joints: joints are not supported yet"));
+  CHECK_THAT(load_error(R"({"bodies": [{"shapes": [{"type": "circle"}]}]})"),
+             Catch::Contains("/bodies/0/shapes/0: missing key \"radius\""));
+  CHECK_THAT(load_error(R"({"bodies": [{"shapes": [{"type": "polygon", "points": [[0,0],[1,0],[2,0]]}]}]})"),
+             Catch::Contains("/bodies/0/shapes/0: "));
+  CHECK_THAT(load_error(R"({"a": 1, "a": 2})"), Catch::Contains("duplicate key \"a\""));
+  CHECK_THAT(load_error("[1, 2]"), Catch::Contains("/: expected an object, got an array"));
+  CHECK_THAT(load_error(R"({"inputs": [{"tick": 1, "type": "set_awake", "body": "nobody", "awake": true}]})"),
+             Catch::Contains("/inputs/0/body: no body is named \"nobody\""));
+  CHECK_THAT(load_error(R"({"bodies": [{"user_data": -1}]})"), Catch::Contains("/bodies/0/user_data: expected an unsigned"));
+  std::string deep(100, '[');
+  CHECK_THAT(load_error(deep), Catch::Contains("nesting deeper than"));
+}
+
+TEST_CASE("scene file errors: missing file") {
+  Result<Scene> r = load_scene_file(k_source + "/scenes/no-such-scene.json");
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(r.status.message, Catch::Contains("no-such-scene.json: cannot open the file"));
+}
+
+TEST_CASE("physics refusals at build time carry the JSON path") {
+  // Restitution 2 passes the loader (a number) and is refused by create_circle_shape.
+  const Scene s = load_ok(R"({"bodies": [{}, {"type": "dynamic", "shapes": [{"type": "circle", "radius": 1},
+                                                                          {"type": "circle", "radius": 1, "restitution": 2}]}]})");
+  Result<BuiltScene> b = build_world(s);
+  REQUIRE_FALSE(b.ok());
+  CHECK_THAT(b.status.message, Catch::Contains("test.json: /bodies/1/shapes/1: ") && Catch::Contains("restitution"));
+  const Scene v = load_ok(R"({"bodies": [{"type": "static", "linear_velocity": [1, 0]}]})");
+  Result<BuiltScene> bv = build_world(v);
+  REQUIRE_FALSE(bv.ok());
+  CHECK_THAT(bv.status.message, Catch::Contains("/bodies/0: "));
+  const Scene w = load_ok(R"({"world": {"contact_hertz": 0}})");
+  Result<BuiltScene> bw = build_world(w);
+  REQUIRE_FALSE(bw.ok());
+  CHECK_THAT(bw.status.message, Catch::Contains("/world: "));
+}
+
+TEST_CASE("generators expand deterministically") {
+  const char* text = R"({"generators": [
+    {"type": "grid", "origin": [1, 2], "columns": 3, "rows": 2, "spacing": [1.5, 1],
+     "body": {"type": "dynamic", "shapes": [{"type": "circle", "radius": 0.25}]}},
+    {"type": "pyramid", "origin": [0, 10], "base": 4, "spacing": [1, 1],
+     "body": {"type": "dynamic", "shapes": [{"type": "box", "half_width": 0.5, "half_height": 0.5}]}},
+    {"type": "random", "seed": 42, "count": 20, "region": {"lower": [-5, 20], "upper": [5, 30]},
+     "kinds": ["circle", "box", "capsule"], "size_min": 0.1, "size_max": 0.3, "speed": 2}]})";
+  const Scene s = load_ok(text);
+  REQUIRE(s.bodies.size() == 6 + 10 + 20);
+  CHECK(s.bodies[5].def.position == Vec2{Q32(4), Q32(3)});
+  CHECK(s.bodies[6 + 4 + 3].def.position == Vec2{0.5_q32 + 2_q32, 11_q32});  // row 1, column 3: shifted half a spacing
+  CHECK(s.bodies[15].def.position == Vec2{1.5_q32, 13_q32});               // the top
+  const Scene again = load_ok(text);
+  for (size_t i = 16; i < s.bodies.size(); ++i) {
+    CHECK(s.bodies[i].def.position == again.bodies[i].def.position);
+    CHECK(s.bodies[i].def.linear_velocity == again.bodies[i].def.linear_velocity);
+    CHECK(s.bodies[i].def.position.x >= -5_q32);
+    CHECK(s.bodies[i].def.position.x <= 5_q32);
+    const Q32 speed = length(s.bodies[i].def.linear_velocity);
+    CHECK(abs(speed - 2_q32).raw < 64);
+  }
+  // A different seed gives a different draw.
+  std::string other = text;
+  other.replace(other.find("\"seed\": 42"), 10, "\"seed\": 43");
+  CHECK_FALSE(load_ok(other).bodies[16].def.position == s.bodies[16].def.position);
+  CHECK_THAT(load_error(R"({"generators": [{"type": "random", "count": 1000, "region": {"lower": [0, 0], "upper": [1, 1]},
+                                            "size_min": 0.1, "size_max": 0.2}]})"),
+             Catch::Contains("/generators/0: count 1000 does not fit"));
+}
+
+TEST_CASE("scripted inputs apply at their tick and map to engine commands") {
+  const Scene s = load_ok(R"({"world": {"gravity": [0, 0]}, "bodies": [
+      {"name": "b", "type": "dynamic", "shapes": [{"type": "circle", "radius": 0.5}]}],
+    "inputs": [{"tick": 2, "type": "set_linear_velocity", "body": "b", "velocity": [1.5, 0]},
+               {"tick": 0, "type": "set_gravity", "gravity": [0, -1]}]})");
+  REQUIRE(s.inputs.size() == 2);
+  CHECK(s.inputs[0].tick == 0);  // sorted by tick
+  Result<BuiltScene> b = build_world(s);
+  REQUIRE(b.ok());
+  const std::vector<Command> at2 = scene_inputs_at(b.value, s, 2);
+  REQUIRE(at2.size() == 1);
+  CHECK(at2[0].type == CommandType::set_linear_velocity);
+  CHECK(at2[0].body == body_ref(b.value.bodies[0]));
+  for (int64_t t = 0; t < 3; ++t) {
+    REQUIRE(apply_scene_inputs(b.value, s, t).ok());
+    REQUIRE(world_step(b.value.world, s.time_step).ok());
+  }
+  CHECK(world_gravity(b.value.world).y == Q32(-1));
+  CHECK(body_linear_velocity(b.value.bodies[0]).x == 1.5_q32);
+  REQUIRE(destroy_world(b.value.world).ok());
+}
+
+TEST_CASE("bundled scenes load, run and repeat their hash") {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(k_source + "/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    ++count;
+    INFO(entry.path().string());
+    Result<Scene> r = load_scene_file(entry.path().string());
+    INFO(r.status.message);
+    REQUIRE(r.ok());
+    const uint64_t a = run_hash(r.value, 240);
+    const uint64_t b = run_hash(r.value, 240);
+    CHECK(a == b);
+  }
+  CHECK(count >= 8);
+}
+
+TEST_CASE("scene create commands rebuild the same world") {
+  Result<Scene> r = load_scene_file(k_source + "/scenes/impulses.json");
+  REQUIRE(r.ok());
+  const Scene& s = r.value;
+  Result<WorldId> w = create_world(s.world);
+  REQUIRE(w.ok());
+  for (const Command& c : scene_create_commands(s)) REQUIRE(apply_command(w.value, c).ok());
+  Result<BuiltScene> b = build_world(s);
+  REQUIRE(b.ok());
+  CHECK(world_state_hash(w.value) == world_state_hash(b.value.world));
+  REQUIRE(destroy_world(w.value).ok());
+  REQUIRE(destroy_world(b.value.world).ok());
+}
+
+TEST_CASE("docs/scene-format.md mentions every key the loader accepts") {
+  std::ifstream f(k_source + "/docs/scene-format.md");
+  REQUIRE(f);
+  std::stringstream text;
+  text << f.rdbuf();
+  const std::string doc = text.str();
+  for (const std::string& key : scene_format_keys()) {
+    INFO(key);
+    CHECK(doc.find("`" + key + "`") != std::string::npos);
+  }
+}

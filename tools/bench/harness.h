@@ -1,0 +1,77 @@
+// harness.h — what one engine harness does with one scene (tools only).
+//
+// A harness builds a fresh world from a SceneSpec, steps it `warmup` steps
+// untimed and `steps` steps timed (steady_clock around the timed loop only),
+// and probes the result. Quality numbers come from doubles read back from the
+// engine after the run (display only; nothing flows back into a world):
+//   ke_start / ke_end   total kinetic energy Σ ½mv² + ½Iω² of the dynamic
+//                       bodies, J, as created and after warm-up + timed steps
+//   track_y_*           the tracked body's height (pyramid top box), m
+//   max_speed           fastest dynamic body at the end, m/s
+//   escaped             dynamic bodies whose centre ends outside the container
+//   fingerprint         Tandem only: FNV-1a of every body's position,
+//                       rotation and velocity raws at the end, so broad
+//                       phases can be checked to give identical states
+//
+// Engines: Tandem with one broad phase per Engine (harness_tandem.cpp), and
+// the peers (peers.h) when they are linked in.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scenes.h"
+
+namespace tandem::bench {
+
+/// Quality probes of one run (see the file comment).
+struct Quality {
+  double ke_start = 0;
+  double ke_end = 0;
+  double track_y_start = 0;
+  double track_y_end = 0;
+  double max_speed = 0;
+  int32_t escaped = 0;
+  bool has_fingerprint = false;
+  uint64_t fingerprint = 0;
+};
+
+/// One run: milliseconds per timed step and the probes; `error` non-empty
+/// when the engine refused the scene (then nothing else is meaningful).
+struct RunResult {
+  double ms_per_step = 0;
+  Quality quality;
+  std::string error;
+};
+
+/// Runs one scene once: build, `warmup` untimed steps, `steps` timed steps.
+using RunFunction = std::function<RunResult(const SceneSpec& scene, int32_t warmup, int32_t steps)>;
+
+/// One engine configuration as it appears in the results.
+struct Engine {
+  std::string engine;       ///< "tandem", "box2d24", "chipmunk"
+  std::string broad_phase;  ///< Tandem: naive, sap, grid, tree; peers: their default
+  std::string note;         ///< printed beside the numbers (build caveats)
+  bool is_peer = false;
+  int32_t max_bodies = 0;   ///< skip scenes with more dynamic bodies (0: no limit)
+  RunFunction run;
+};
+
+/// Tandem's broad phases by short name: "naive", "sap", "grid", "tree".
+std::vector<std::string> tandem_broad_phase_names();
+
+/// The Tandem engine with the named broad phase ("naive", "sap", "grid",
+/// "tree"); false when the name is unknown. A broad phase that the linked
+/// physics library refuses shows up as a run error, not here.
+bool tandem_engine(const std::string& broad_phase, Engine* out);
+
+/// The peer engines linked into this program (peers.cpp: Box2D 2.4 and
+/// Chipmunk2D when built with TANDEM_BUILD_BENCH, peers_none.cpp: none).
+std::vector<Engine> peer_engines();
+
+/// Why peer_engines() is empty, or "" when it is not.
+const char* peers_unavailable_reason();
+
+}  // namespace tandem::bench

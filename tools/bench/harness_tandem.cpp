@@ -1,0 +1,180 @@
+// harness_tandem.cpp — runs a benchmark scene in Tandem with one broad phase.
+//
+// The world: default_world_def() (4 sub-steps, contact 30 Hz / damping 10,
+// restitution threshold 1 m/s) with the scene's gravity, sleeping off and the
+// chosen WorldDef::broad_phase. Bodies and shapes are made from the spec's
+// Q32 values as they are. Doubles appear only in the probes (harness.h).
+#include <chrono>
+#include <cmath>
+
+#include "harness.h"
+#include "physics/tandem.h"
+
+namespace tandem::bench {
+namespace {
+
+struct NamedKind {
+  const char* name;
+  BroadPhaseKind kind;
+};
+constexpr NamedKind k_kinds[] = {
+    {"naive", BroadPhaseKind::naive},
+    {"sap", BroadPhaseKind::sweep_and_prune},
+    {"grid", BroadPhaseKind::grid},
+    {"tree", BroadPhaseKind::tree},
+};
+
+struct Fnv {
+  uint64_t h = 1469598103934665603ull;
+  void add(int64_t raw) {
+    const auto u = static_cast<uint64_t>(raw);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (u >> (8 * i)) & 0xFFu;
+      h *= 1099511628211ull;
+    }
+  }
+};
+
+double ke_of(BodyId b) {
+  const Vec2 v = body_linear_velocity(b);
+  const double vx = to_double(v.x), vy = to_double(v.y), w = to_double(body_angular_velocity(b));
+  return 0.5 * to_double(body_mass(b)) * (vx * vx + vy * vy) + 0.5 * to_double(body_rotational_inertia(b)) * w * w;
+}
+
+void probe(const SceneSpec& scene, const std::vector<BodyId>& bodies, bool end, Quality* q) {
+  double ke = 0;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!scene.bodies[i].dynamic) continue;
+    ke += ke_of(bodies[i]);
+  }
+  const double track_y =
+      scene.track_index >= 0 ? to_double(body_position(bodies[static_cast<size_t>(scene.track_index)]).y) : 0.0;
+  if (!end) {
+    q->ke_start = ke;
+    q->track_y_start = track_y;
+    return;
+  }
+  q->ke_end = ke;
+  q->track_y_end = track_y;
+  Fnv fp;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const BodyId b = bodies[i];
+    const Vec2 p = body_position(b);
+    const Rot r = body_rotation(b);
+    const Vec2 v = body_linear_velocity(b);
+    fp.add(p.x.raw);
+    fp.add(p.y.raw);
+    fp.add(r.c.raw);
+    fp.add(r.s.raw);
+    fp.add(v.x.raw);
+    fp.add(v.y.raw);
+    fp.add(body_angular_velocity(b).raw);
+    if (!scene.bodies[i].dynamic) continue;
+    const double x = to_double(p.x), y = to_double(p.y);
+    const double speed = std::hypot(to_double(v.x), to_double(v.y));
+    if (speed > q->max_speed) q->max_speed = speed;
+    const Container& c = scene.container;
+    if (x < c.min_x || x > c.max_x || y < c.min_y || y > c.max_y) ++q->escaped;
+  }
+  q->has_fingerprint = true;
+  q->fingerprint = fp.h;
+}
+
+RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup, int32_t steps) {
+  RunResult result;
+  WorldDef wd = default_world_def();
+  wd.gravity = {scene.gravity_x, scene.gravity_y};
+  wd.enable_sleep = false;
+  wd.broad_phase = kind;
+  const Result<WorldId> w = create_world(wd);
+  if (!w.ok()) {
+    result.error = "create_world: " + w.status.message;
+    return result;
+  }
+  std::vector<BodyId> bodies;
+  bodies.reserve(scene.bodies.size());
+  const auto fail = [&](const std::string& what, const Status& st, size_t i) {
+    result.error = what + " (body " + std::to_string(i) + "): " + st.message;
+    (void)destroy_world(w.value);
+    return result;
+  };
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& s = scene.bodies[i];
+    BodyDef bd = default_body_def();
+    bd.type = s.dynamic ? BodyType::dynamic_body : BodyType::static_body;
+    bd.position = {s.x, s.y};
+    bd.linear_velocity = {s.vx, s.vy};
+    bd.enable_sleep = false;
+    const Result<BodyId> b = create_body(w.value, bd);
+    if (!b.ok()) return fail("create_body", b.status, i);
+    ShapeDef sd = default_shape_def();
+    sd.friction = s.friction;
+    sd.restitution = s.restitution;
+    sd.density = s.density;
+    Result<ShapeId> sh;
+    switch (s.shape) {
+      case ShapeKind::circle:
+        sh = create_circle_shape(b.value, sd, Circle{{}, s.radius});
+        break;
+      case ShapeKind::capsule:
+        sh = create_capsule_shape(b.value, sd, Capsule{{-s.half_width, Q32{}}, {s.half_width, Q32{}}, s.radius});
+        break;
+      case ShapeKind::box: {
+        Polygon box;
+        const GeometryStatus gs = make_box(s.half_width, s.half_height, &box);
+        if (!gs.ok) {
+          result.error = "make_box (body " + std::to_string(i) + ") refused";
+          (void)destroy_world(w.value);
+          return result;
+        }
+        sh = create_polygon_shape(b.value, sd, box);
+        break;
+      }
+    }
+    if (!sh.ok()) return fail("create shape", sh.status, i);
+    bodies.push_back(b.value);
+  }
+  probe(scene, bodies, false, &result.quality);
+  const Q32 dt = time_step();
+  for (int32_t i = 0; i < warmup; ++i) {
+    const StepResult r = world_step(w.value, dt);
+    if (!r.ok()) return fail("world_step (warm-up " + std::to_string(i) + ")", r.status, 0);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int32_t i = 0; i < steps; ++i) {
+    const StepResult r = world_step(w.value, dt);
+    if (!r.ok()) return fail("world_step (" + std::to_string(i) + ")", r.status, 0);
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
+  probe(scene, bodies, true, &result.quality);
+  (void)destroy_world(w.value);
+  return result;
+}
+
+}  // namespace
+
+std::vector<std::string> tandem_broad_phase_names() {
+  std::vector<std::string> names;
+  for (const NamedKind& k : k_kinds) names.emplace_back(k.name);
+  return names;
+}
+
+bool tandem_engine(const std::string& broad_phase, Engine* out) {
+  for (const NamedKind& k : k_kinds) {
+    if (broad_phase != k.name) continue;
+    Engine e;
+    e.engine = "tandem";
+    e.broad_phase = k.name;
+    e.is_peer = false;
+    const BroadPhaseKind kind = k.kind;
+    e.run = [kind](const SceneSpec& scene, int32_t warmup, int32_t steps) {
+      return run_tandem(kind, scene, warmup, steps);
+    };
+    *out = std::move(e);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace tandem::bench

@@ -1,0 +1,229 @@
+// scenes.cpp — the benchmark scene generators (see scenes.h for the scenes
+// and for why every value is built from integers).
+#include "scenes.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <utility>
+
+#include "fixed/fixed_math.h"
+
+namespace tandem::bench {
+namespace {
+
+/// splitmix64: a fixed, portable sequence (as scene.h).
+struct SplitMix64 {
+  uint64_t s;
+  uint64_t next() {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [a, b): a + (b − a)·u with u the top 32 bits of a draw as a
+  /// Q32.32 fraction in [0, 1), one rounded Q32 product.
+  Q32 uni(Q32 a, Q32 b) {
+    const Q32 u = Q32::from_raw(static_cast<int64_t>(next() >> 32));
+    return a + (b - a) * u;
+  }
+};
+
+Q32 q_int(int64_t v) { return Q32::from_int(v); }
+Q32 q_ratio(int64_t num, int64_t den) { return Q32::from_ratio(num, den); }
+
+BodySpec static_box(Q32 cx, Q32 cy, Q32 hx, Q32 hy, Q32 friction, Q32 restitution) {
+  BodySpec b;
+  b.dynamic = false;
+  b.shape = ShapeKind::box;
+  b.x = cx;
+  b.y = cy;
+  b.half_width = hx;
+  b.half_height = hy;
+  b.friction = friction;
+  b.restitution = restitution;
+  b.density = Q32::one();
+  return b;
+}
+
+}  // namespace
+
+Q32 time_step() { return Q32::from_ratio(1, 60); }
+
+SceneSpec make_circles(int32_t n, uint64_t seed) {
+  SceneSpec s;
+  s.name = "circles-" + std::to_string(n);
+  s.family = "circles";
+  s.size = n;
+  s.warmup_steps = 60;
+  s.timed_steps = 300;
+  SplitMix64 rng{seed};
+  // Box side L for 25 % coverage: n·E[πr²] / L² = 1/4 with E[r²] = 0.25 + 0.04/12
+  // for r ~ U(0.4, 0.6), so L² = n·π·(1 + 1/75) = n·π·76/75.
+  const Q32 side = sqrt(k_pi * q_ratio(76, 75) * q_int(n));
+  const Q32 half = side / q_int(2);
+  const Q32 cell = q_ratio(6, 5);
+  const int64_t cells = (side / cell).floor_int();
+  std::vector<int64_t> idx(static_cast<size_t>(cells * cells));
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int64_t>(i);
+  for (size_t i = idx.size() - 1; i > 0; --i) {  // Fisher-Yates, as scene.h
+    const auto j = static_cast<size_t>(rng.next() % static_cast<uint64_t>(i + 1));
+    std::swap(idx[i], idx[j]);
+  }
+  const Q32 wall = Q32::one();  // half thickness
+  const Q32 zero{};
+  const Q32 one = Q32::one();
+  const Q32 long_half = half + q_int(2);
+  s.bodies.push_back(static_box(zero, -half - wall, long_half, wall, zero, one));
+  s.bodies.push_back(static_box(zero, half + wall, long_half, wall, zero, one));
+  s.bodies.push_back(static_box(-half - wall, zero, wall, long_half, zero, one));
+  s.bodies.push_back(static_box(half + wall, zero, wall, long_half, zero, one));
+  const Q32 origin = -half + (side - q_int(cells) * cell) / q_int(2) + cell / q_int(2);
+  for (int32_t k = 0; k < n; ++k) {
+    const int64_t c = idx[static_cast<size_t>(k)];
+    BodySpec b;
+    b.dynamic = true;
+    b.shape = ShapeKind::circle;
+    b.x = origin + q_int(c % cells) * cell;
+    b.y = origin + q_int(c / cells) * cell;
+    b.radius = rng.uni(q_ratio(2, 5), q_ratio(3, 5));
+    b.vx = rng.uni(q_int(-5), q_int(5));
+    b.vy = rng.uni(q_int(-5), q_int(5));
+    b.friction = zero;
+    b.restitution = one;
+    b.density = one;
+    s.bodies.push_back(b);
+  }
+  s.dynamic_count = n;
+  const double lim = to_double(half) + 0.01;
+  s.container = {-lim, lim, -lim, lim};
+  return s;
+}
+
+SceneSpec make_pyramid(int32_t base) {
+  SceneSpec s;
+  s.name = "pyramid-" + std::to_string(base);
+  s.family = "pyramid";
+  s.size = base;
+  s.warmup_steps = 0;
+  s.timed_steps = 500;
+  s.gravity_y = q_int(-10);
+  const Q32 a = Q32::half();
+  const Q32 friction = q_ratio(3, 5);
+  const Q32 ground_half = std::max(q_int(100), a * q_int(base) + q_int(10));
+  s.bodies.push_back(static_box(Q32{}, q_int(-1), ground_half, Q32::one(), friction, Q32{}));
+  for (int32_t i = 0; i < base; ++i) {
+    const Q32 y = q_int(2 * i + 1) * a;
+    for (int32_t j = i; j < base; ++j) {
+      BodySpec b;
+      b.dynamic = true;
+      b.shape = ShapeKind::box;
+      b.x = q_int(i + 1) * a + q_int(2 * (j - i)) * a - a * q_int(base);
+      b.y = y;
+      b.half_width = a;
+      b.half_height = a;
+      b.friction = friction;
+      b.density = Q32::one();
+      s.bodies.push_back(b);
+      ++s.dynamic_count;
+    }
+  }
+  s.track_index = static_cast<int32_t>(s.bodies.size()) - 1;  // the last one made is the top box
+  s.container.min_y = -0.5;
+  return s;
+}
+
+SceneSpec make_rain(int32_t n, uint64_t seed) {
+  SceneSpec s;
+  s.name = "rain-" + std::to_string(n);
+  s.family = "rain";
+  s.size = n;
+  s.warmup_steps = 0;
+  s.timed_steps = 600;
+  s.gravity_y = q_int(-10);
+  SplitMix64 rng{seed};
+  const Q32 friction = q_ratio(3, 5);
+  const Q32 zero{};
+  s.bodies.push_back(static_box(zero, q_int(-1), q_int(42), Q32::one(), friction, zero));
+  s.bodies.push_back(static_box(q_int(-41), q_int(74), Q32::one(), q_int(75), friction, zero));
+  s.bodies.push_back(static_box(q_int(41), q_int(74), Q32::one(), q_int(75), friction, zero));
+  constexpr int32_t cols = 50;
+  const Q32 spacing = q_ratio(3, 2);
+  const Q32 left = q_ratio(-49 * 3, 4);  // −(cols − 1)/2 · 1.5
+  for (int32_t k = 0; k < n; ++k) {
+    const int32_t row = k / cols, col = k % cols;
+    BodySpec b;
+    b.dynamic = true;
+    b.x = left + q_int(col) * spacing + rng.uni(q_ratio(-1, 10), q_ratio(1, 10));
+    b.y = q_int(5) + q_int(row) * spacing;
+    switch (k % 3) {
+      case 0:
+        b.shape = ShapeKind::circle;
+        b.radius = rng.uni(q_ratio(2, 5), q_ratio(3, 5));
+        break;
+      case 1:
+        b.shape = ShapeKind::box;
+        b.half_width = rng.uni(q_ratio(7, 20), q_ratio(1, 2));
+        b.half_height = b.half_width;
+        break;
+      default:
+        b.shape = ShapeKind::capsule;
+        b.radius = rng.uni(q_ratio(1, 5), q_ratio(3, 10));
+        b.half_width = rng.uni(q_ratio(1, 5), q_ratio(2, 5));
+        break;
+    }
+    b.friction = friction;
+    b.restitution = zero;
+    b.density = Q32::one();
+    s.bodies.push_back(b);
+    ++s.dynamic_count;
+  }
+  s.container.min_x = -40.01;
+  s.container.max_x = 40.01;
+  s.container.min_y = -0.01;
+  return s;
+}
+
+bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
+  const size_t dash = name.find('-');
+  const std::string family = name.substr(0, dash);
+  int64_t size = family == "rain" ? 4000 : 0;
+  if (dash != std::string::npos) {
+    std::string digits = name.substr(dash + 1);
+    int64_t scale = 1;
+    if (!digits.empty() && (digits.back() == 'k' || digits.back() == 'K')) {
+      scale = 1000;
+      digits.pop_back();
+    }
+    if (digits.empty() || digits.size() > 6 ||
+        !std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+      *error = "scene '" + name + "': expected <family>-<count>, e.g. circles-4000 or circles-4k";
+      return false;
+    }
+    size = std::strtoll(digits.c_str(), nullptr, 10) * scale;
+  }
+  if (family == "circles" || family == "rain") {
+    if (size < 1 || size > 100000) {
+      *error = "scene '" + name + "': count must be 1…100000";
+      return false;
+    }
+    *out = family == "circles" ? make_circles(static_cast<int32_t>(size)) : make_rain(static_cast<int32_t>(size));
+    return true;
+  }
+  if (family == "pyramid") {
+    if (size < 1 || size > 200) {
+      *error = "scene '" + name + "': pyramid base must be 1…200";
+      return false;
+    }
+    *out = make_pyramid(static_cast<int32_t>(size));
+    return true;
+  }
+  *error = "scene '" + name + "': unknown family '" + family + "' (circles, pyramid, rain)";
+  return false;
+}
+
+std::vector<std::string> default_scene_names() {
+  return {"circles-1000", "circles-2000", "circles-4000",  "circles-8000", "circles-16000",
+          "circles-32000", "pyramid-20",  "pyramid-100",   "rain-4000"};
+}
+
+}  // namespace tandem::bench

@@ -1,0 +1,110 @@
+// scenes.h — the benchmark scenes, described once for every engine (tools only).
+//
+// One generator builds each scene as a list of BodySpec records; the Tandem
+// harness and the peer harnesses (Box2D 2.4, Chipmunk2D) all build their
+// worlds from that same list, in list order, so every engine simulates the
+// same bodies.
+//
+// Exactness: every value in a spec is a Q32.32 made from integers — ratios
+// (Q32::from_ratio), integer arithmetic on raw splitmix64 draws and Q32
+// products, never a binary floating-point value — so nothing computed in
+// floating point flows into Tandem's state. The peers get
+// to_double(value) = raw / 2^32, which is exact in binary64 for every value
+// here (|raw| < 2^53), so the bodies match to the last bit a double can
+// show (Box2D 2.4 then rounds to binary32 itself).
+//
+// Scenes (same layout and seeds as shared/reference/peer-bench/scene.h; the
+// random draws use the top 32 bits of each splitmix64 output as a fraction
+// in [0, 1) instead of the top 53, so values differ from scene.h by < 2^-32
+// of their range):
+//   circles-N    N circles, r ∈ [0.4, 0.6) m, velocity components ∈ [−5, 5)
+//                m/s, on a random subset of a 1.2 m lattice inside a closed
+//                square box of four static walls sized for ~25 % area
+//                coverage; no gravity, restitution 1, friction 0. Warm-up
+//                60 steps, timed 300.
+//   pyramid-B    B(B+1)/2 boxes of half extent 0.5 m, exactly touching, on a
+//                static ground; gravity −10, friction 0.6. Timed 500 steps.
+//                The tracked body is the top box.
+//   rain-N       N bodies cycling circle (r ∈ [0.4, 0.6)), box (half extent
+//                ∈ [0.35, 0.5)) and capsule (radius ∈ [0.2, 0.3), segment
+//                half length ∈ [0.2, 0.4), horizontal), released at rest
+//                from a 50-column lattice (1.5 m spacing, x jitter ±0.1 m)
+//                above an 80 m wide open-top container; gravity −10,
+//                friction 0.6, restitution 0. Timed 600 steps.
+// Every body has sleeping off (the harnesses disable it).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fixed/fixed.h"
+
+namespace tandem::bench {
+
+/// The shape of one body.
+enum class ShapeKind : int32_t {
+  circle = 0,   ///< radius
+  box = 1,      ///< half_width × half_height, axis-aligned, centred on the body
+  capsule = 2,  ///< segment (−half_width, 0)…(+half_width, 0) swept by radius
+};
+
+/// One body with one shape, in Q32.32 SI units (m, m/s, kg/m²).
+struct BodySpec {
+  bool dynamic = false;
+  ShapeKind shape = ShapeKind::box;
+  Q32 x, y;                     ///< position of the body origin (= centre of mass), m
+  Q32 vx, vy;                   ///< initial linear velocity, m/s
+  Q32 radius;                   ///< circle / capsule radius, m
+  Q32 half_width, half_height;  ///< box half extents; capsule: half_width = half segment length, m
+  Q32 friction, restitution, density;
+};
+
+/// Where the dynamic bodies belong: a body whose centre lies outside these
+/// bounds (m) at the end of a run counts as escaped.
+struct Container {
+  double min_x = -std::numeric_limits<double>::infinity();
+  double max_x = std::numeric_limits<double>::infinity();
+  double min_y = -std::numeric_limits<double>::infinity();
+  double max_y = std::numeric_limits<double>::infinity();
+};
+
+/// A whole scene.
+struct SceneSpec {
+  std::string name;    ///< e.g. "circles-4000"
+  std::string family;  ///< "circles", "pyramid" or "rain"
+  int32_t size = 0;    ///< N (circles, rain) or base B (pyramid)
+  Q32 gravity_x, gravity_y;     ///< m/s²
+  std::vector<BodySpec> bodies;  ///< build in this order
+  int32_t warmup_steps = 0;      ///< default steps before timing
+  int32_t timed_steps = 0;       ///< default timed steps
+  int32_t track_index = -1;      ///< body whose height is reported (pyramid top), −1 none
+  int32_t dynamic_count = 0;
+  Container container;
+};
+
+/// The time step every engine uses: the Q32.32 nearest 1/60 s.
+Q32 time_step();
+
+/// A Q32.32 value as a binary64 double (exact for |raw| < 2^53). Display and
+/// peer input only.
+inline double to_double(Q32 v) { return static_cast<double>(v.raw) / 4294967296.0; }
+
+/// circles-N (seed 12345 as scene.h).
+SceneSpec make_circles(int32_t n, uint64_t seed = 12345);
+/// pyramid-B: B(B+1)/2 boxes.
+SceneSpec make_pyramid(int32_t base);
+/// rain-N (seed 777 as scene.h).
+SceneSpec make_rain(int32_t n, uint64_t seed = 777);
+
+/// Parses a scene name — "circles-4000", "circles-4k", "pyramid-100",
+/// "rain-4000", "rain" (= rain-4000) — and builds it. On an unknown family
+/// or a size out of range (circles/rain 1…100000, pyramid 1…200) returns
+/// false and writes why to *error.
+bool make_scene(const std::string& name, SceneSpec* out, std::string* error);
+
+/// The default suite: circles-1k…32k, pyramid-20, pyramid-100, rain-4000.
+std::vector<std::string> default_scene_names();
+
+}  // namespace tandem::bench

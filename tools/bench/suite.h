@@ -1,0 +1,42 @@
+// suite.h — the physics benchmark suite: runs scenes × engines, prints the
+// table and writes CSV, JSON and an SVG plot (tools only). Used by the
+// tandem_bench_physics driver and by `tandem bench` (tools/cli/cmd_bench.cpp).
+//
+// For each scene and engine: `runs` fresh worlds, each stepped `warmup`
+// untimed and `steps` timed steps. Reported: median ms/step and min–max over
+// the runs, each Tandem row's ratio to each peer's median (Tandem / peer:
+// above 1 means Tandem is slower), and the quality probes of the first run
+// (harness.h; every engine here is deterministic run to run). Tandem rows of
+// one scene must end in identical states whatever the broad phase: the suite
+// compares their fingerprints and warns when they differ.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness.h"
+
+namespace tandem::bench {
+
+/// What to run and where to write it.
+struct BenchOptions {
+  std::vector<std::string> scenes;        ///< scene names (scenes.h); empty: default_scene_names()
+  int32_t runs = 5;                       ///< runs per scene and engine, ≥ 1
+  int32_t runs_large = 0;                 ///< runs for scenes of > 8000 dynamic bodies; 0: same as runs
+  int32_t steps = 0;                      ///< timed steps; 0: the scene's default
+  int32_t warmup = -1;                    ///< warm-up steps; −1: the scene's default
+  std::vector<std::string> broad_phases;  ///< Tandem broad phases (naive, sap, grid, tree, all); empty: all
+  bool peers = false;                     ///< also run the peer engines (when linked in)
+  int32_t naive_max = 4000;               ///< skip the naive broad phase above this many dynamic bodies
+  std::string csv, json, svg;             ///< output files; empty: not written
+  bool quiet = false;                     ///< no progress lines on stderr
+};
+
+/// Runs the suite: progress on stderr, the table on stdout, the files asked
+/// for. Returns 0 on success, 1 when Tandem's broad phases ended a scene in
+/// different states (after writing everything), 2 on bad options (an unknown scene or broad
+/// phase, runs < 1, a file that cannot be written) with the reason on stderr.
+int run_bench_suite(const BenchOptions& options);
+
+}  // namespace tandem::bench

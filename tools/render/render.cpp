@@ -1,0 +1,283 @@
+// render.cpp — Cairo drawing of a world (see render.h).
+#include "render.h"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "physics/world.h"
+
+namespace tandem::render {
+namespace {
+
+struct Color {
+  double r, g, b;
+};
+
+// World → pixel mapping for one cell.
+struct Mapper {
+  double scale = 1, ox = 0, oy = 0;  // pixel = (ox + x·scale, oy − y·scale)
+  Mapper(const View& v, double x0, double y0, double w, double h) {
+    const double vw = std::max(v.max_x - v.min_x, 1e-9), vh = std::max(v.max_y - v.min_y, 1e-9);
+    scale = std::min(w / vw, h / vh);
+    const double cx = 0.5 * (v.min_x + v.max_x), cy = 0.5 * (v.min_y + v.max_y);
+    ox = x0 + 0.5 * w - cx * scale;
+    oy = y0 + 0.5 * h + cy * scale;
+  }
+  double x(double wx) const { return ox + wx * scale; }
+  double y(double wy) const { return oy - wy * scale; }
+};
+
+double d(Q32 v) { return v.to_double(); }
+
+// World point of a local point under a transform (binary floating point: display only).
+void world_point(const Transform& xf, Vec2 p, double* out_x, double* out_y) {
+  const double c = d(xf.q.c), s = d(xf.q.s), px = d(p.x), py = d(p.y);
+  *out_x = d(xf.p.x) + c * px - s * py;
+  *out_y = d(xf.p.y) + s * px + c * py;
+}
+
+void shape_path(cairo_t* cr, const Mapper& m, const ShapeGeometry& g, const Transform& xf) {
+  double x = 0, y = 0;
+  const double rot = std::atan2(d(xf.q.s), d(xf.q.c));
+  switch (g.type) {
+    case ShapeType::circle:
+      world_point(xf, g.circle.center, &x, &y);
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, m.x(x), m.y(y), d(g.circle.radius) * m.scale, 0, 2 * M_PI);
+      break;
+    case ShapeType::capsule: {
+      double x1, y1, x2, y2;
+      world_point(xf, g.capsule.center1, &x1, &y1);
+      world_point(xf, g.capsule.center2, &x2, &y2);
+      const double a = std::atan2(-(y2 - y1), x2 - x1);  // screen angle (y down)
+      const double r = d(g.capsule.radius) * m.scale;
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, m.x(x2), m.y(y2), r, a - M_PI / 2, a + M_PI / 2);
+      cairo_arc(cr, m.x(x1), m.y(y1), r, a + M_PI / 2, a + 3 * M_PI / 2);
+      cairo_close_path(cr);
+      break;
+    }
+    case ShapeType::polygon: {
+      const Polygon& p = g.polygon;
+      cairo_new_sub_path(cr);
+      for (int i = 0; i < p.count; ++i) {
+        world_point(xf, p.vertices[static_cast<size_t>(i)], &x, &y);
+        if (i == 0) cairo_move_to(cr, m.x(x), m.y(y));
+        else cairo_line_to(cr, m.x(x), m.y(y));
+      }
+      cairo_close_path(cr);
+      break;
+    }
+    case ShapeType::segment:
+    case ShapeType::chain_segment: {
+      const Segment& s = g.type == ShapeType::segment ? g.segment : g.chain_segment.segment;
+      world_point(xf, s.point1, &x, &y);
+      cairo_move_to(cr, m.x(x), m.y(y));
+      world_point(xf, s.point2, &x, &y);
+      cairo_line_to(cr, m.x(x), m.y(y));
+      break;
+    }
+    default: break;
+  }
+  (void)rot;
+}
+
+Color body_color(BodyId b) {
+  if (!body_is_enabled(b)) return {0.85, 0.85, 0.85};
+  switch (body_type(b)) {
+    case BodyType::static_body: return {0.55, 0.65, 0.55};
+    case BodyType::kinematic_body: return {0.55, 0.6, 0.9};
+    default: return body_is_awake(b) ? Color{0.95, 0.65, 0.35} : Color{0.7, 0.7, 0.7};
+  }
+}
+
+void draw_world(cairo_t* cr, WorldId world, const View& view, const RenderOptions& o, double x0, double y0, double w,
+                double h) {
+  cairo_save(cr);
+  cairo_rectangle(cr, x0, y0, w, h);
+  cairo_clip(cr);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  const Mapper m(view, x0, y0, w, h);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+
+  const int32_t body_count = world_bodies(world, nullptr, 0);
+  std::vector<BodyId> bodies(static_cast<size_t>(body_count));
+  world_bodies(world, bodies.data(), body_count);
+  std::vector<ShapeId> shapes;
+  for (BodyId b : bodies) {
+    const Transform xf = body_transform(b);
+    const Color c = body_color(b);
+    shapes.resize(static_cast<size_t>(body_shape_count(b)));
+    body_shapes(b, shapes.data(), static_cast<int32_t>(shapes.size()));
+    for (ShapeId s : shapes) {
+      const ShapeGeometry g = shape_geometry(s);
+      const bool solid = g.type == ShapeType::circle || g.type == ShapeType::capsule || g.type == ShapeType::polygon;
+      cairo_new_path(cr);
+      shape_path(cr, m, g, xf);
+      if (shape_is_sensor(s)) {
+        const double dash[] = {4.0, 3.0};
+        cairo_set_dash(cr, dash, 2, 0);
+      }
+      if (solid && !shape_is_sensor(s) && body_is_enabled(b)) {
+        cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.85);
+        cairo_fill_preserve(cr);
+      }
+      cairo_set_source_rgb(cr, c.r * 0.45, c.g * 0.45, c.b * 0.45);
+      cairo_set_line_width(cr, solid ? 1.0 : 2.0);
+      cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0);
+      if (g.type == ShapeType::circle) {  // radius line: shows rotation
+        double cx, cy, ex, ey;
+        world_point(xf, g.circle.center, &cx, &cy);
+        world_point(xf, g.circle.center + Vec2{g.circle.radius, Q32{}}, &ex, &ey);
+        cairo_move_to(cr, m.x(cx), m.y(cy));
+        cairo_line_to(cr, m.x(ex), m.y(ey));
+        cairo_stroke(cr);
+      }
+      if (o.aabbs) {
+        const AABB box = shape_aabb(s);
+        cairo_set_source_rgba(cr, 0.8, 0.2, 0.8, 0.6);
+        cairo_set_line_width(cr, 0.7);
+        cairo_rectangle(cr, m.x(d(box.lower.x)), m.y(d(box.upper.y)), d(box.upper.x - box.lower.x) * m.scale,
+                        d(box.upper.y - box.lower.y) * m.scale);
+        cairo_stroke(cr);
+      }
+    }
+  }
+  if (o.contacts) {
+    if (const World* wr = find_world(world)) {
+      const double normal_px = 12.0;
+      for (const Contact& c : wr->contacts) {
+        const Manifold& mf = c.manifold;
+        for (int i = 0; i < mf.point_count; ++i) {
+          const ManifoldPoint& p = mf.points[static_cast<size_t>(i)];
+          const double px = m.x(d(p.point.x)), py = m.y(d(p.point.y));
+          const bool touching = p.separation <= Q32{};
+          cairo_set_source_rgb(cr, touching ? 0.85 : 0.4, 0.1, touching ? 0.1 : 0.85);
+          cairo_arc(cr, px, py, 2.5, 0, 2 * M_PI);
+          cairo_fill(cr);
+          cairo_set_line_width(cr, 1.0);
+          cairo_move_to(cr, px, py);
+          cairo_line_to(cr, px + d(mf.normal.x) * normal_px, py - d(mf.normal.y) * normal_px);
+          cairo_stroke(cr);
+        }
+      }
+    }
+  }
+  if (!o.caption.empty()) {
+    cairo_select_font_face(cr, "monospace", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 13);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, x0 + 6, y0 + 17);
+    cairo_show_text(cr, o.caption.c_str());
+  }
+  cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, x0 + 0.5, y0 + 0.5, w - 1, h - 1);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+}
+
+std::string cairo_error(cairo_status_t status, const std::string& path) {
+  return path + ": cannot write the picture (" + cairo_status_to_string(status) + ")";
+}
+
+}  // namespace
+
+View fit_view(WorldId world, double margin, double clip) {
+  const int32_t body_count = world_bodies(world, nullptr, 0);
+  std::vector<BodyId> bodies(static_cast<size_t>(body_count));
+  world_bodies(world, bodies.data(), body_count);
+  bool any = false;
+  View v;
+  std::vector<ShapeId> shapes;
+  for (BodyId b : bodies) {
+    shapes.resize(static_cast<size_t>(body_shape_count(b)));
+    body_shapes(b, shapes.data(), static_cast<int32_t>(shapes.size()));
+    for (ShapeId s : shapes) {
+      const AABB box = shape_aabb(s);
+      const double lx = std::max(d(box.lower.x), -clip), ly = std::max(d(box.lower.y), -clip);
+      const double ux = std::min(d(box.upper.x), clip), uy = std::min(d(box.upper.y), clip);
+      if (lx > ux || ly > uy) continue;
+      if (!any) v = View{lx, ly, ux, uy}, any = true;
+      v.min_x = std::min(v.min_x, lx), v.min_y = std::min(v.min_y, ly);
+      v.max_x = std::max(v.max_x, ux), v.max_y = std::max(v.max_y, uy);
+    }
+  }
+  if (!any) return View{};
+  const double mx = (v.max_x - v.min_x) * margin + 0.1, my = (v.max_y - v.min_y) * margin + 0.1;
+  return View{v.min_x - mx, v.min_y - my, v.max_x + mx, v.max_y + my};
+}
+
+std::string render_png(WorldId world, const View& view, const RenderOptions& options, const std::string& path) {
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, options.width, options.height);
+  cairo_t* cr = cairo_create(surface);
+  draw_world(cr, world, view, options, 0, 0, options.width, options.height);
+  cairo_destroy(cr);
+  const cairo_status_t status = cairo_surface_write_to_png(surface, path.c_str());
+  cairo_surface_destroy(surface);
+  return status == CAIRO_STATUS_SUCCESS ? "" : cairo_error(status, path);
+}
+
+std::string render_svg(WorldId world, const View& view, const RenderOptions& options, const std::string& path) {
+  cairo_surface_t* surface = cairo_svg_surface_create(path.c_str(), options.width, options.height);
+  if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
+    const cairo_status_t status = cairo_surface_status(surface);
+    cairo_surface_destroy(surface);
+    return cairo_error(status, path);
+  }
+  cairo_t* cr = cairo_create(surface);
+  draw_world(cr, world, view, options, 0, 0, options.width, options.height);
+  cairo_destroy(cr);
+  cairo_surface_finish(surface);
+  const cairo_status_t status = cairo_surface_status(surface);
+  cairo_surface_destroy(surface);
+  return status == CAIRO_STATUS_SUCCESS ? "" : cairo_error(status, path);
+}
+
+struct ContactSheet::Impl {
+  int columns, cell_w, cell_h, count = 0;
+  std::vector<cairo_surface_t*> frames;
+};
+
+ContactSheet::ContactSheet(int columns, int cell_width, int cell_height)
+    : impl_(new Impl{std::max(1, columns), cell_width, cell_height, 0, {}}) {}
+
+ContactSheet::~ContactSheet() {
+  for (cairo_surface_t* s : impl_->frames) cairo_surface_destroy(s);
+}
+
+void ContactSheet::add(WorldId world, const View& view, const RenderOptions& options) {
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, impl_->cell_w, impl_->cell_h);
+  cairo_t* cr = cairo_create(surface);
+  draw_world(cr, world, view, options, 0, 0, impl_->cell_w, impl_->cell_h);
+  cairo_destroy(cr);
+  impl_->frames.push_back(surface);
+}
+
+std::string ContactSheet::write_png(const std::string& path) const {
+  const int n = static_cast<int>(impl_->frames.size());
+  const int cols = std::min(impl_->columns, std::max(1, n));
+  const int rows = std::max(1, (n + cols - 1) / cols);
+  cairo_surface_t* sheet = cairo_image_surface_create(CAIRO_FORMAT_RGB24, cols * impl_->cell_w, rows * impl_->cell_h);
+  cairo_t* cr = cairo_create(sheet);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  for (int i = 0; i < n; ++i) {
+    cairo_set_source_surface(cr, impl_->frames[static_cast<size_t>(i)], (i % cols) * impl_->cell_w,
+                             (i / cols) * impl_->cell_h);
+    cairo_paint(cr);
+  }
+  cairo_destroy(cr);
+  const cairo_status_t status = cairo_surface_write_to_png(sheet, path.c_str());
+  cairo_surface_destroy(sheet);
+  return status == CAIRO_STATUS_SUCCESS ? "" : cairo_error(status, path);
+}
+
+}  // namespace tandem::render

@@ -1,0 +1,803 @@
+// scene.cpp — the scene reader (JsonValue tree → Scene), generators, and
+// building a world. See scene.h and docs/scene-format.md.
+//
+// The reader throws SceneError internally (tools code, never across the
+// public functions, which return Result/Status) so that each field read is
+// one line. Key lists are tables at the top: the reader refuses keys not in
+// them, and scene_format_keys() hands them to the documentation test.
+#include "scene.h"
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include "fixed/fixed_math.h"
+#include "json_tree.h"
+
+namespace tandem::scene {
+namespace {
+
+// --- accepted keys (documented in docs/scene-format.md) -----------------------
+const std::vector<std::string> k_top_keys = {"format", "version", "name",   "description", "comment",
+                                             "step_hz", "ticks",  "view",   "world",       "bodies",
+                                             "generators", "joints", "inputs"};
+const std::vector<std::string> k_view_keys = {"lower", "upper", "comment"};
+const std::vector<std::string> k_world_keys = {
+    "gravity",           "sub_steps",           "contact_hertz",     "contact_damping_ratio",
+    "max_contact_push_speed", "joint_hertz",    "joint_damping_ratio", "restitution_threshold",
+    "hit_event_threshold", "max_linear_speed",  "bounds",            "sleep",
+    "broad_phase",       "user_data",           "comment"};
+const std::vector<std::string> k_body_keys = {
+    "name",           "type",          "position",     "angle",   "linear_velocity", "angular_velocity",
+    "linear_damping", "angular_damping", "gravity_scale", "user_data", "sleep",        "awake",
+    "fixed_rotation", "bullet",        "enabled",      "shapes",  "comment"};
+const std::vector<std::string> k_shape_common_keys = {"type",   "friction",   "restitution", "density", "filter",
+                                                      "sensor", "hit_events", "user_data",   "comment"};
+const std::vector<std::string> k_circle_keys = {"center", "radius"};
+const std::vector<std::string> k_capsule_keys = {"center1", "center2", "radius"};
+const std::vector<std::string> k_box_keys = {"half_width", "half_height", "center", "angle", "radius"};
+const std::vector<std::string> k_polygon_keys = {"points", "radius"};
+const std::vector<std::string> k_segment_keys = {"point1", "point2"};
+const std::vector<std::string> k_chain_keys = {"points", "loop"};
+const std::vector<std::string> k_filter_keys = {"category", "mask", "group", "comment"};
+const std::vector<std::string> k_generator_grid_keys = {"type", "origin", "columns", "rows", "spacing", "body",
+                                                        "comment"};
+const std::vector<std::string> k_generator_pyramid_keys = {"type", "origin", "base", "spacing", "body", "comment"};
+const std::vector<std::string> k_generator_random_keys = {"type",     "seed",  "count", "region", "kinds",
+                                                          "size_min", "size_max", "speed", "body", "shape",
+                                                          "comment"};
+const std::vector<std::string> k_input_common_keys = {"tick", "type", "body", "comment"};
+const std::vector<std::string> k_input_value_keys = {"force",    "impulse", "point",    "torque",  "velocity",
+                                                     "position", "angle",   "awake",    "enabled", "gravity",
+                                                     "wake"};
+const std::vector<std::string> k_names = {
+    // enum values
+    "static", "kinematic", "dynamic", "circle", "capsule", "box", "polygon", "segment", "chain",
+    "grid", "pyramid", "random", "naive", "sweep_and_prune", "tree",
+    "apply_force", "apply_linear_impulse", "apply_torque", "apply_angular_impulse", "set_linear_velocity",
+    "set_angular_velocity", "set_transform", "set_awake", "set_enabled", "set_gravity", "destroy_body"};
+
+struct SceneError {
+  std::string message;
+};
+
+std::string show_path(const std::string& path) { return path.empty() ? "/" : path; }
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+  throw SceneError{show_path(path) + ": " + message};
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += "\"" + names[i] + "\"";
+  }
+  return out;
+}
+
+// Levenshtein distance, for "did you mean".
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& known) {
+  size_t best = SIZE_MAX;
+  std::string best_word;
+  for (const std::string& k : known) {
+    const size_t d = edit_distance(word, k);
+    if (d < best) best = d, best_word = k;
+  }
+  if (best_word.empty() || best > std::max<size_t>(2, word.size() / 3)) return "";
+  return " (did you mean \"" + best_word + "\"?)";
+}
+
+std::string got(const JsonValue& v) {
+  switch (v.kind) {
+    case JsonValue::Kind::integer:
+    case JsonValue::Kind::number: return std::string("got ") + v.text;
+    case JsonValue::Kind::string: return "got a string";
+    default: return std::string("got ") + json_kind_name(v.kind);
+  }
+}
+
+// An object whose keys have been checked against the allowed lists.
+class Obj {
+ public:
+  Obj(const JsonValue& v, std::string path, std::initializer_list<const std::vector<std::string>*> allowed)
+      : v_(v), path_(std::move(path)) {
+    if (v.kind != JsonValue::Kind::object) fail(path_, std::string("expected an object, ") + got(v));
+    std::vector<std::string> all;
+    for (const auto* list : allowed) all.insert(all.end(), list->begin(), list->end());
+    for (const std::string& key : v.keys)
+      if (std::find(all.begin(), all.end(), key) == all.end())
+        fail(path_ + "/" + key, "unknown key" + did_you_mean(key, all) + "; expected one of " + quoted_list(all));
+  }
+  const JsonValue* find(const std::string& key) const {
+    for (size_t i = 0; i < v_.keys.size(); ++i)
+      if (v_.keys[i] == key) return &v_.items[i];
+    return nullptr;
+  }
+  const JsonValue& need(const std::string& key) const {
+    const JsonValue* p = find(key);
+    if (!p) fail(path_, "missing key \"" + key + "\"");
+    return *p;
+  }
+  std::string at(const std::string& key) const { return path_ + "/" + key; }
+  const std::string& path() const { return path_; }
+
+ private:
+  const JsonValue& v_;
+  std::string path_;
+};
+
+// --- scalar readers ---------------------------------------------------------
+Q32 read_q32(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::number && v.kind != JsonValue::Kind::integer)
+    fail(path, "expected a number, " + got(v));
+  const auto p = parse_q32(v.text);
+  if (!p.ok()) {
+    if (std::string(p.error) == "out of range")
+      fail(path, "expected a number within ±2147483648 (Q32.32), got " + v.text);
+    fail(path, "expected a number: " + describe_parse_error(v.text, p.error, p.error_offset));
+  }
+  return p.value;
+}
+
+Q32 read_q32_min(const JsonValue& v, const std::string& path, Q32 lo, bool exclusive) {
+  const Q32 q = read_q32(v, path);
+  if (exclusive ? q <= lo : q < lo)
+    fail(path, std::string("expected a number ") + (exclusive ? "> " : "≥ ") + to_string(lo) + ", got " + v.text);
+  return q;
+}
+
+int64_t read_int(const JsonValue& v, const std::string& path, int64_t lo, int64_t hi) {
+  const std::string range = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (v.kind == JsonValue::Kind::number) fail(path, "expected " + range + " (no fraction or exponent), " + got(v));
+  if (v.kind != JsonValue::Kind::integer) fail(path, "expected " + range + ", " + got(v));
+  const bool negative = !v.text.empty() && v.text[0] == '-';
+  uint64_t magnitude = 0;
+  for (size_t i = negative ? 1 : 0; i < v.text.size(); ++i) {
+    if (magnitude > (UINT64_MAX - 9) / 10) fail(path, "expected " + range + ", " + got(v));
+    magnitude = magnitude * 10 + static_cast<uint64_t>(v.text[i] - '0');
+  }
+  if (magnitude > (uint64_t{1} << 62)) fail(path, "expected " + range + ", " + got(v));
+  const int64_t value = negative ? -static_cast<int64_t>(magnitude) : static_cast<int64_t>(magnitude);
+  if (value < lo || value > hi) fail(path, "expected " + range + ", " + got(v));
+  return value;
+}
+
+uint64_t read_u64(const JsonValue& v, const std::string& path) {
+  const char* expected = "expected an unsigned 64-bit integer or a \"0x...\" hex string, ";
+  if (v.kind == JsonValue::Kind::string) {
+    const std::string& s = v.text;
+    if (s.size() < 3 || s.size() > 18 || s[0] != '0' || (s[1] != 'x' && s[1] != 'X'))
+      fail(path, std::string(expected) + "got \"" + s + "\"");
+    uint64_t out = 0;
+    for (size_t i = 2; i < s.size(); ++i) {
+      const char c = s[i];
+      int digit = -1;
+      if (c >= '0' && c <= '9') digit = c - '0';
+      else if (c >= 'a' && c <= 'f') digit = c - 'a' + 10;
+      else if (c >= 'A' && c <= 'F') digit = c - 'A' + 10;
+      if (digit < 0) fail(path, std::string(expected) + "got \"" + s + "\"");
+      out = (out << 4) | static_cast<uint64_t>(digit);
+    }
+    return out;
+  }
+  if (v.kind != JsonValue::Kind::integer || (!v.text.empty() && v.text[0] == '-'))
+    fail(path, std::string(expected) + got(v));
+  uint64_t out = 0;
+  for (char c : v.text) {
+    const auto digit = static_cast<uint64_t>(c - '0');
+    if (out > (UINT64_MAX - digit) / 10) fail(path, std::string(expected) + got(v));
+    out = out * 10 + digit;
+  }
+  return out;
+}
+
+bool read_bool(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::boolean) fail(path, "expected true or false, " + got(v));
+  return v.boolean;
+}
+
+std::string read_string(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::string) fail(path, "expected a string, " + got(v));
+  return v.text;
+}
+
+std::string read_enum(const JsonValue& v, const std::string& path, const std::vector<std::string>& names) {
+  if (v.kind != JsonValue::Kind::string) fail(path, "expected one of " + quoted_list(names) + ", " + got(v));
+  if (std::find(names.begin(), names.end(), v.text) == names.end())
+    fail(path, "unknown value \"" + v.text + "\"" + did_you_mean(v.text, names) + "; expected one of " +
+                   quoted_list(names));
+  return v.text;
+}
+
+Vec2 read_vec2(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::array || v.items.size() != 2)
+    fail(path, "expected [x, y] (an array of two numbers), " +
+                   (v.kind == JsonValue::Kind::array ? "got " + std::to_string(v.items.size()) + " elements" : got(v)));
+  return Vec2{read_q32(v.items[0], path + "/0"), read_q32(v.items[1], path + "/1")};
+}
+
+std::vector<Vec2> read_points(const JsonValue& v, const std::string& path, size_t min_count, size_t max_count) {
+  if (v.kind != JsonValue::Kind::array) fail(path, "expected an array of [x, y] points, " + got(v));
+  if (v.items.size() < min_count || v.items.size() > max_count)
+    fail(path, "expected " + std::to_string(min_count) + " to " + std::to_string(max_count) + " points, got " +
+                   std::to_string(v.items.size()));
+  std::vector<Vec2> out;
+  for (size_t i = 0; i < v.items.size(); ++i) out.push_back(read_vec2(v.items[i], path + "/" + std::to_string(i)));
+  return out;
+}
+
+const std::vector<JsonValue>& read_array(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::array) fail(path, "expected an array, " + got(v));
+  return v.items;
+}
+
+// Optional field helpers: assign only when present.
+template <typename F>
+void opt(const Obj& o, const char* key, F&& read) {
+  if (const JsonValue* v = o.find(key)) read(*v, o.at(key));
+}
+
+AABB read_box(const JsonValue& v, const std::string& path) {
+  Obj o(v, path, {&k_view_keys});
+  AABB box{read_vec2(o.need("lower"), o.at("lower")), read_vec2(o.need("upper"), o.at("upper"))};
+  if (!(box.lower.x < box.upper.x && box.lower.y < box.upper.y))
+    fail(path, "expected lower < upper in both x and y");
+  return box;
+}
+
+// --- shapes -------------------------------------------------------------------
+void read_shape_material(const Obj& o, ShapeDef* def) {
+  opt(o, "friction", [&](const JsonValue& v, const std::string& p) { def->friction = read_q32(v, p); });
+  opt(o, "restitution", [&](const JsonValue& v, const std::string& p) { def->restitution = read_q32(v, p); });
+  opt(o, "density", [&](const JsonValue& v, const std::string& p) { def->density = read_q32(v, p); });
+  opt(o, "sensor", [&](const JsonValue& v, const std::string& p) { def->is_sensor = read_bool(v, p); });
+  opt(o, "hit_events", [&](const JsonValue& v, const std::string& p) { def->enable_hit_events = read_bool(v, p); });
+  opt(o, "user_data", [&](const JsonValue& v, const std::string& p) { def->user_data = read_u64(v, p); });
+  opt(o, "filter", [&](const JsonValue& v, const std::string& p) {
+    Obj f(v, p, {&k_filter_keys});
+    opt(f, "category", [&](const JsonValue& w, const std::string& q) { def->filter.category_bits = read_u64(w, q); });
+    opt(f, "mask", [&](const JsonValue& w, const std::string& q) { def->filter.mask_bits = read_u64(w, q); });
+    opt(f, "group", [&](const JsonValue& w, const std::string& q) {
+      def->filter.group_index = static_cast<int32_t>(read_int(w, q, INT32_MIN, INT32_MAX));
+    });
+  });
+}
+
+void check_geometry(const GeometryStatus& status, const std::string& path) {
+  if (!status.ok) fail(path, status.message);
+}
+
+ShapeSpec read_shape(const JsonValue& v, const std::string& path) {
+  if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
+  const std::vector<std::string> kinds = {"circle", "capsule", "box", "polygon", "segment", "chain"};
+  std::string kind;
+  for (size_t i = 0; i < v.keys.size(); ++i)
+    if (v.keys[i] == "type") kind = read_enum(v.items[i], path + "/type", kinds);
+  if (kind.empty()) fail(path, "missing key \"type\" (one of " + quoted_list(kinds) + ")");
+  const std::vector<std::string>* specific = kind == "circle"    ? &k_circle_keys
+                                             : kind == "capsule" ? &k_capsule_keys
+                                             : kind == "box"     ? &k_box_keys
+                                             : kind == "polygon" ? &k_polygon_keys
+                                             : kind == "segment" ? &k_segment_keys
+                                                                 : &k_chain_keys;
+  Obj o(v, path, {&k_shape_common_keys, specific});
+  ShapeSpec s;
+  read_shape_material(o, &s.def);
+  auto vec_or = [&](const char* key, Vec2 fallback) {
+    const JsonValue* f = o.find(key);
+    return f ? read_vec2(*f, o.at(key)) : fallback;
+  };
+  auto q_or = [&](const char* key, Q32 fallback) {
+    const JsonValue* f = o.find(key);
+    return f ? read_q32(*f, o.at(key)) : fallback;
+  };
+  if (kind == "circle") {
+    s.kind = ShapeKind::circle;
+    s.circle = Circle{vec_or("center", Vec2{}), read_q32(o.need("radius"), o.at("radius"))};
+    check_geometry(validate_circle(s.circle), path);
+  } else if (kind == "capsule") {
+    s.kind = ShapeKind::capsule;
+    s.capsule = Capsule{read_vec2(o.need("center1"), o.at("center1")), read_vec2(o.need("center2"), o.at("center2")),
+                        read_q32(o.need("radius"), o.at("radius"))};
+    check_geometry(validate_capsule(s.capsule), path);
+  } else if (kind == "box") {
+    s.kind = ShapeKind::polygon;
+    const Q32 hw = read_q32(o.need("half_width"), o.at("half_width"));
+    const Q32 hh = read_q32(o.need("half_height"), o.at("half_height"));
+    check_geometry(make_offset_box(hw, hh, vec_or("center", Vec2{}), q_or("angle", Q32{}), q_or("radius", Q32{}),
+                                   &s.polygon),
+                   path);
+  } else if (kind == "polygon") {
+    s.kind = ShapeKind::polygon;
+    const std::vector<Vec2> points =
+        read_points(o.need("points"), o.at("points"), 3, static_cast<size_t>(k_max_hull_input_points));
+    check_geometry(make_polygon_from_points(points.data(), static_cast<int32_t>(points.size()), q_or("radius", Q32{}),
+                                            &s.polygon),
+                   path);
+  } else if (kind == "segment") {
+    s.kind = ShapeKind::segment;
+    s.segment = Segment{read_vec2(o.need("point1"), o.at("point1")), read_vec2(o.need("point2"), o.at("point2"))};
+    check_geometry(validate_segment(s.segment), path);
+  } else {
+    s.kind = ShapeKind::chain;
+    s.chain_points = read_points(o.need("points"), o.at("points"), 3, 1u << 20);
+    if (const JsonValue* f = o.find("loop")) s.chain_loop = read_bool(*f, o.at("loop"));
+    if (!s.chain_loop && s.chain_points.size() < 4)
+      fail(o.at("points"), "an open chain needs at least 4 points (the first and last are ghost vertices)");
+  }
+  return s;
+}
+
+// --- bodies -------------------------------------------------------------------
+// Reads body fields into *body. A template (generators) may not carry a name.
+void read_body_into(const JsonValue& v, const std::string& path, SceneBody* body, bool is_template) {
+  Obj o(v, path, {&k_body_keys});
+  BodyDef& d = body->def;
+  body->path = path;
+  opt(o, "name", [&](const JsonValue& w, const std::string& p) {
+    if (is_template) fail(p, "a generator's body template cannot have a name");
+    body->name = read_string(w, p);
+  });
+  opt(o, "type", [&](const JsonValue& w, const std::string& p) {
+    const std::string t = read_enum(w, p, {"static", "kinematic", "dynamic"});
+    d.type = t == "static" ? BodyType::static_body : t == "kinematic" ? BodyType::kinematic_body : BodyType::dynamic_body;
+  });
+  opt(o, "position", [&](const JsonValue& w, const std::string& p) { d.position = read_vec2(w, p); });
+  opt(o, "angle", [&](const JsonValue& w, const std::string& p) { d.rotation = rot_from_angle(read_q32(w, p)); });
+  opt(o, "linear_velocity", [&](const JsonValue& w, const std::string& p) { d.linear_velocity = read_vec2(w, p); });
+  opt(o, "angular_velocity", [&](const JsonValue& w, const std::string& p) { d.angular_velocity = read_q32(w, p); });
+  opt(o, "linear_damping", [&](const JsonValue& w, const std::string& p) { d.linear_damping = read_q32(w, p); });
+  opt(o, "angular_damping", [&](const JsonValue& w, const std::string& p) { d.angular_damping = read_q32(w, p); });
+  opt(o, "gravity_scale", [&](const JsonValue& w, const std::string& p) { d.gravity_scale = read_q32(w, p); });
+  opt(o, "user_data", [&](const JsonValue& w, const std::string& p) { d.user_data = read_u64(w, p); });
+  opt(o, "sleep", [&](const JsonValue& w, const std::string& p) { d.enable_sleep = read_bool(w, p); });
+  opt(o, "awake", [&](const JsonValue& w, const std::string& p) { d.is_awake = read_bool(w, p); });
+  opt(o, "fixed_rotation", [&](const JsonValue& w, const std::string& p) { d.fixed_rotation = read_bool(w, p); });
+  opt(o, "bullet", [&](const JsonValue& w, const std::string& p) { d.is_bullet = read_bool(w, p); });
+  opt(o, "enabled", [&](const JsonValue& w, const std::string& p) { d.is_enabled = read_bool(w, p); });
+  opt(o, "shapes", [&](const JsonValue& w, const std::string& p) {
+    const auto& items = read_array(w, p);
+    for (size_t i = 0; i < items.size(); ++i) {
+      const std::string sp = p + "/" + std::to_string(i);
+      body->shapes.push_back(read_shape(items[i], sp));
+      body->shape_paths.push_back(sp);
+    }
+  });
+}
+
+// --- generators ---------------------------------------------------------------
+// splitmix64 (Steele, Lea, Flood 2014): fully specified, so every platform
+// draws the same numbers.
+struct SplitMix64 {
+  uint64_t state;
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  // A value in [lo, hi] (raw units; modulo draw, a bias below 2^-30 here).
+  Q32 between(Q32 lo, Q32 hi) {
+    const uint64_t span = static_cast<uint64_t>(hi.raw) - static_cast<uint64_t>(lo.raw);
+    const uint64_t r = span == UINT64_MAX ? next() : next() % (span + 1);
+    return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(lo.raw) + r));
+  }
+};
+
+int64_t checked_count(int64_t a, int64_t b, const std::string& path) {
+  if (a * b > 1000000) fail(path, "generates more than 1000000 bodies");
+  return a * b;
+}
+
+SceneBody template_body(const Obj& g, bool required) {
+  SceneBody t;
+  if (const JsonValue* b = g.find("body")) read_body_into(*b, g.at("body"), &t, true);
+  else if (required) fail(g.path(), "missing key \"body\" (the body template)");
+  return t;
+}
+
+void place_copy(const SceneBody& t, Vec2 offset, const std::string& path, std::vector<SceneBody>* out) {
+  SceneBody b = t;
+  b.def.position = b.def.position + offset;
+  b.path = path;
+  b.shape_paths.assign(b.shapes.size(), path + "/body/shapes");
+  out->push_back(std::move(b));
+}
+
+void expand_grid(const Obj& g, std::vector<SceneBody>* out) {
+  const SceneBody t = template_body(g, true);
+  const Vec2 origin = g.find("origin") ? read_vec2(*g.find("origin"), g.at("origin")) : Vec2{};
+  const int64_t cols = read_int(g.need("columns"), g.at("columns"), 1, 1000000);
+  const int64_t rows = read_int(g.need("rows"), g.at("rows"), 1, 1000000);
+  checked_count(cols, rows, g.path());
+  const Vec2 spacing = read_vec2(g.need("spacing"), g.at("spacing"));
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t c = 0; c < cols; ++c)
+      place_copy(t, origin + Vec2{spacing.x * c, spacing.y * r}, g.path(), out);
+}
+
+void expand_pyramid(const Obj& g, std::vector<SceneBody>* out) {
+  const SceneBody t = template_body(g, true);
+  const Vec2 origin = g.find("origin") ? read_vec2(*g.find("origin"), g.at("origin")) : Vec2{};
+  const int64_t base = read_int(g.need("base"), g.at("base"), 1, 1000);
+  const Vec2 spacing = read_vec2(g.need("spacing"), g.at("spacing"));
+  for (int64_t r = 0; r < base; ++r)
+    for (int64_t c = 0; c < base - r; ++c)
+      place_copy(t, origin + Vec2{spacing.x * c + spacing.x * r / 2, spacing.y * r}, g.path(), out);
+}
+
+void expand_random(const Obj& g, std::vector<SceneBody>* out) {
+  SceneBody t = template_body(g, false);
+  if (!g.find("body")) t.def.type = BodyType::dynamic_body;
+  if (!t.shapes.empty()) fail(g.at("body") + "/shapes", "the random generator makes the shapes itself (see \"kinds\")");
+  ShapeDef material = default_shape_def();
+  if (const JsonValue* s = g.find("shape")) {
+    static const std::vector<std::string> material_keys = {"friction",   "restitution", "density", "filter",
+                                                           "sensor",     "hit_events",  "user_data", "comment"};
+    Obj so(*s, g.at("shape"), {&material_keys});
+    read_shape_material(so, &material);
+  }
+  const uint64_t seed = g.find("seed") ? read_u64(*g.find("seed"), g.at("seed")) : 0;
+  const int64_t count = read_int(g.need("count"), g.at("count"), 0, 1000000);
+  const AABB region = read_box(g.need("region"), g.at("region"));
+  std::vector<std::string> kinds = {"circle"};
+  if (const JsonValue* k = g.find("kinds")) {
+    kinds.clear();
+    const auto& items = read_array(*k, g.at("kinds"));
+    if (items.empty()) fail(g.at("kinds"), "expected at least one kind");
+    for (size_t i = 0; i < items.size(); ++i)
+      kinds.push_back(read_enum(items[i], g.at("kinds") + "/" + std::to_string(i), {"circle", "box", "capsule"}));
+  }
+  const Q32 size_min = read_q32_min(g.need("size_min"), g.at("size_min"), Q32{}, true);
+  const Q32 size_max = read_q32_min(g.need("size_max"), g.at("size_max"), size_min, false);
+  const Q32 speed = g.find("speed") ? read_q32_min(*g.find("speed"), g.at("speed"), Q32{}, false) : Q32{};
+  // Jittered grid: one cell per body, 2.2 × size_max wide, filled row by row
+  // from region.lower, so no two bodies start overlapping.
+  const Q32 cell = size_max * 2 + size_max / 5;
+  const Q32 width = region.upper.x - region.lower.x, height = region.upper.y - region.lower.y;
+  const int64_t cols = (width / cell).raw >> 32, rows = (height / cell).raw >> 32;
+  if (cols < 1 || rows < 1 || cols * rows < count)
+    fail(g.path(), "count " + std::to_string(count) + " does not fit: the region holds at most " +
+                       std::to_string(std::max<int64_t>(0, cols) * std::max<int64_t>(0, rows)) +
+                       " bodies of size_max " + to_string(size_max));
+  SplitMix64 rng{seed};
+  for (int64_t i = 0; i < count; ++i) {
+    // Draw order (documented): kind, size, jitter x, jitter y, angle, direction.
+    const std::string& kind = kinds[static_cast<size_t>(rng.next() % kinds.size())];
+    const Q32 size = rng.between(size_min, size_max);
+    const Q32 slack = cell / 2 - size;
+    const Q32 jx = rng.between(-slack, slack), jy = rng.between(-slack, slack);
+    const Q32 angle = rng.between(-k_pi, k_pi);
+    const Q32 direction = rng.between(-k_pi, k_pi);
+    SceneBody b = t;
+    b.path = g.path();
+    b.def.position = Vec2{region.lower.x + cell * (i % cols) + cell / 2 + jx, region.lower.y + cell * (i / cols) + cell / 2 + jy};
+    ShapeSpec s;
+    s.def = material;
+    if (kind == "circle") {
+      s.kind = ShapeKind::circle;
+      s.circle = Circle{Vec2{}, size};
+    } else if (kind == "box") {
+      s.kind = ShapeKind::polygon;
+      const Q32 half = size * 7 / 10;  // the box fits inside the size circle
+      check_geometry(make_box(half, half, &s.polygon), g.path());
+      b.def.rotation = rot_from_angle(angle);
+    } else {
+      s.kind = ShapeKind::capsule;
+      const Q32 half = size / 2;
+      s.capsule = Capsule{Vec2{-half, Q32{}}, Vec2{half, Q32{}}, half};
+      b.def.rotation = rot_from_angle(angle);
+    }
+    if (speed > Q32{}) {
+      const Rot d = rot_from_angle(direction);
+      b.def.linear_velocity = Vec2{d.c * speed, d.s * speed};
+    }
+    b.shapes.push_back(s);
+    b.shape_paths.push_back(g.path());
+    out->push_back(std::move(b));
+  }
+}
+
+void read_generator(const JsonValue& v, const std::string& path, std::vector<SceneBody>* out) {
+  if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
+  std::string type;
+  for (size_t i = 0; i < v.keys.size(); ++i)
+    if (v.keys[i] == "type") type = read_enum(v.items[i], path + "/type", {"grid", "pyramid", "random"});
+  if (type.empty()) fail(path, "missing key \"type\" (one of \"grid\", \"pyramid\" or \"random\")");
+  if (type == "grid") expand_grid(Obj(v, path, {&k_generator_grid_keys}), out);
+  else if (type == "pyramid") expand_pyramid(Obj(v, path, {&k_generator_pyramid_keys}), out);
+  else expand_random(Obj(v, path, {&k_generator_random_keys}), out);
+}
+
+// --- world, inputs --------------------------------------------------------------
+void read_world(const JsonValue& v, const std::string& path, WorldDef* w) {
+  Obj o(v, path, {&k_world_keys});
+  opt(o, "gravity", [&](const JsonValue& x, const std::string& p) { w->gravity = read_vec2(x, p); });
+  opt(o, "sub_steps", [&](const JsonValue& x, const std::string& p) {
+    w->sub_step_count = static_cast<int32_t>(read_int(x, p, 1, k_max_sub_steps));
+  });
+  opt(o, "contact_hertz", [&](const JsonValue& x, const std::string& p) { w->contact_hertz = read_q32(x, p); });
+  opt(o, "contact_damping_ratio",
+      [&](const JsonValue& x, const std::string& p) { w->contact_damping_ratio = read_q32(x, p); });
+  opt(o, "max_contact_push_speed",
+      [&](const JsonValue& x, const std::string& p) { w->max_contact_push_speed = read_q32(x, p); });
+  opt(o, "joint_hertz", [&](const JsonValue& x, const std::string& p) { w->joint_hertz = read_q32(x, p); });
+  opt(o, "joint_damping_ratio",
+      [&](const JsonValue& x, const std::string& p) { w->joint_damping_ratio = read_q32(x, p); });
+  opt(o, "restitution_threshold",
+      [&](const JsonValue& x, const std::string& p) { w->restitution_threshold = read_q32(x, p); });
+  opt(o, "hit_event_threshold",
+      [&](const JsonValue& x, const std::string& p) { w->hit_event_threshold = read_q32(x, p); });
+  opt(o, "max_linear_speed", [&](const JsonValue& x, const std::string& p) { w->max_linear_speed = read_q32(x, p); });
+  opt(o, "bounds", [&](const JsonValue& x, const std::string& p) { w->bounds = read_box(x, p); });
+  opt(o, "sleep", [&](const JsonValue& x, const std::string& p) { w->enable_sleep = read_bool(x, p); });
+  opt(o, "user_data", [&](const JsonValue& x, const std::string& p) { w->user_data = read_u64(x, p); });
+  opt(o, "broad_phase", [&](const JsonValue& x, const std::string& p) {
+    const std::string b = read_enum(x, p, {"naive", "sweep_and_prune", "grid", "tree"});
+    w->broad_phase = b == "naive"             ? BroadPhaseKind::naive
+                     : b == "sweep_and_prune" ? BroadPhaseKind::sweep_and_prune
+                     : b == "grid"            ? BroadPhaseKind::grid
+                                              : BroadPhaseKind::tree;
+  });
+}
+
+int32_t resolve_body(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies) {
+  if (v.kind == JsonValue::Kind::string) {
+    for (size_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].name == v.text) return static_cast<int32_t>(i);
+    fail(path, "no body is named \"" + v.text + "\"");
+  }
+  if (bodies.empty()) fail(path, "the scene has no bodies");
+  return static_cast<int32_t>(read_int(v, path, 0, static_cast<int64_t>(bodies.size()) - 1));
+}
+
+SceneInput read_input(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies) {
+  if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
+  static const std::vector<std::string> types = {
+      "apply_force",         "apply_linear_impulse", "apply_torque", "apply_angular_impulse", "set_linear_velocity",
+      "set_angular_velocity", "set_transform",       "set_awake",    "set_enabled",           "set_gravity",
+      "destroy_body"};
+  std::string type;
+  for (size_t i = 0; i < v.keys.size(); ++i)
+    if (v.keys[i] == "type") type = read_enum(v.items[i], path + "/type", types);
+  if (type.empty()) fail(path, "missing key \"type\" (one of " + quoted_list(types) + ")");
+  std::vector<std::string> keys;
+  if (type == "apply_force") keys = {"force", "point", "wake"};
+  else if (type == "apply_linear_impulse") keys = {"impulse", "point", "wake"};
+  else if (type == "apply_torque") keys = {"torque", "wake"};
+  else if (type == "apply_angular_impulse") keys = {"impulse", "wake"};
+  else if (type == "set_linear_velocity" || type == "set_angular_velocity") keys = {"velocity"};
+  else if (type == "set_transform") keys = {"position", "angle"};
+  else if (type == "set_awake") keys = {"awake"};
+  else if (type == "set_enabled") keys = {"enabled"};
+  else if (type == "set_gravity") keys = {"gravity"};
+  Obj o(v, path, {&k_input_common_keys, &keys});
+  SceneInput in;
+  in.path = path;
+  in.tick = read_int(o.need("tick"), o.at("tick"), 0, INT64_C(1) << 40);
+  if (type == "set_gravity") {
+    if (o.find("body")) fail(o.at("body"), "set_gravity takes no body");
+    in.command = make_set_gravity(read_vec2(o.need("gravity"), o.at("gravity")));
+    return in;
+  }
+  in.body = resolve_body(o.need("body"), o.at("body"), bodies);
+  const BodyRef none{};
+  const bool wake = o.find("wake") ? read_bool(*o.find("wake"), o.at("wake")) : true;
+  auto vec = [&](const char* key) { return read_vec2(o.need(key), o.at(key)); };
+  auto q = [&](const char* key) { return read_q32(o.need(key), o.at(key)); };
+  if (type == "apply_force" || type == "apply_linear_impulse") {
+    const bool force = type == "apply_force";
+    const Vec2 amount = vec(force ? "force" : "impulse");
+    if (o.find("point")) {
+      const Vec2 point = vec("point");
+      in.command = force ? make_apply_force(none, amount, point, wake) : make_apply_linear_impulse(none, amount, point, wake);
+    } else {
+      in.command = force ? make_apply_force_to_center(none, amount, wake)
+                         : make_apply_linear_impulse_to_center(none, amount, wake);
+    }
+  } else if (type == "apply_torque") {
+    in.command = make_apply_torque(none, q("torque"), wake);
+  } else if (type == "apply_angular_impulse") {
+    in.command = make_apply_angular_impulse(none, q("impulse"), wake);
+  } else if (type == "set_linear_velocity") {
+    in.command = make_set_linear_velocity(none, vec("velocity"));
+  } else if (type == "set_angular_velocity") {
+    in.command = make_set_angular_velocity(none, q("velocity"));
+  } else if (type == "set_transform") {
+    const Q32 angle = o.find("angle") ? q("angle") : Q32{};
+    in.command = make_set_transform(none, vec("position"), rot_from_angle(angle));
+  } else if (type == "set_awake") {
+    in.command = make_set_awake(none, read_bool(o.need("awake"), o.at("awake")));
+  } else if (type == "set_enabled") {
+    in.command = make_set_enabled(none, read_bool(o.need("enabled"), o.at("enabled")));
+  } else {
+    in.command = make_destroy_body(none);
+  }
+  return in;
+}
+
+Scene read_scene(const JsonValue& root) {
+  Obj o(root, "", {&k_top_keys});
+  Scene s;
+  opt(o, "format", [&](const JsonValue& v, const std::string& p) { read_enum(v, p, {k_scene_format}); });
+  opt(o, "version", [&](const JsonValue& v, const std::string& p) { read_int(v, p, 1, k_scene_version); });
+  opt(o, "name", [&](const JsonValue& v, const std::string& p) { s.title = read_string(v, p); });
+  opt(o, "description", [&](const JsonValue& v, const std::string& p) { s.description = read_string(v, p); });
+  opt(o, "comment", [&](const JsonValue&, const std::string&) {});
+  opt(o, "step_hz", [&](const JsonValue& v, const std::string& p) { s.step_hz = static_cast<int32_t>(read_int(v, p, 1, 10000)); });
+  s.time_step = Q32::from_ratio(1, s.step_hz);
+  opt(o, "ticks", [&](const JsonValue& v, const std::string& p) { s.ticks = read_int(v, p, 0, INT64_C(1) << 40); });
+  opt(o, "view", [&](const JsonValue& v, const std::string& p) {
+    s.view = read_box(v, p);
+    s.has_view = true;
+  });
+  opt(o, "world", [&](const JsonValue& v, const std::string& p) { read_world(v, p, &s.world); });
+  opt(o, "joints", [&](const JsonValue& v, const std::string& p) {
+    if (!read_array(v, p).empty())
+      fail(p, "joints are not supported yet (they arrive with the joint task); remove them or leave the array empty");
+  });
+  opt(o, "bodies", [&](const JsonValue& v, const std::string& p) {
+    const auto& items = read_array(v, p);
+    for (size_t i = 0; i < items.size(); ++i) {
+      SceneBody b;
+      read_body_into(items[i], p + "/" + std::to_string(i), &b, false);
+      if (!b.name.empty())
+        for (const SceneBody& other : s.bodies)
+          if (other.name == b.name) fail(p + "/" + std::to_string(i) + "/name", "duplicate body name \"" + b.name + "\"");
+      s.bodies.push_back(std::move(b));
+    }
+  });
+  opt(o, "generators", [&](const JsonValue& v, const std::string& p) {
+    const auto& items = read_array(v, p);
+    for (size_t i = 0; i < items.size(); ++i) read_generator(items[i], p + "/" + std::to_string(i), &s.bodies);
+  });
+  if (s.bodies.size() > static_cast<size_t>(k_max_bodies)) fail("", "too many bodies");
+  opt(o, "inputs", [&](const JsonValue& v, const std::string& p) {
+    const auto& items = read_array(v, p);
+    for (size_t i = 0; i < items.size(); ++i) s.inputs.push_back(read_input(items[i], p + "/" + std::to_string(i), s.bodies));
+  });
+  std::stable_sort(s.inputs.begin(), s.inputs.end(),
+                   [](const SceneInput& a, const SceneInput& b) { return a.tick < b.tick; });
+  return s;
+}
+
+Status error_status(std::string message) { return Status{StatusCode::invalid_argument, std::move(message)}; }
+
+}  // namespace
+
+Result<Scene> load_scene_text(std::string_view text, const std::string& name) {
+  Result<Scene> out;
+  JsonParse parsed = parse_json_tree(text);
+  if (!parsed.ok()) {
+    out.status = error_status(name + ": " + parsed.error);
+    return out;
+  }
+  try {
+    out.value = read_scene(parsed.value);
+  } catch (const SceneError& e) {
+    out.status = error_status(name + ": " + e.message);
+    return out;
+  }
+  out.value.name = name;
+  return out;
+}
+
+Result<Scene> load_scene_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    Result<Scene> out;
+    out.status = error_status(path + ": cannot open the file");
+    return out;
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) {
+    Result<Scene> out;
+    out.status = error_status(path + ": cannot read the file");
+    return out;
+  }
+  return load_scene_text(text.str(), path);
+}
+
+Result<BuiltScene> build_world(const Scene& scene) {
+  Result<BuiltScene> out;
+  Result<WorldId> world = create_world(scene.world);
+  if (!world.ok()) {
+    out.status = error_status(scene.name + ": /world: " + world.status.message);
+    return out;
+  }
+  BuiltScene built;
+  built.world = world.value;
+  auto refuse = [&](const std::string& path, const Status& status) {
+    destroy_world(built.world);
+    out.status = error_status(scene.name + ": " + show_path(path) + ": " + status.message);
+    return out;
+  };
+  for (const SceneBody& b : scene.bodies) {
+    Result<BodyId> body = create_body(built.world, b.def);
+    if (!body.ok()) return refuse(b.path, body.status);
+    for (size_t i = 0; i < b.shapes.size(); ++i) {
+      const ShapeSpec& s = b.shapes[i];
+      Status status;
+      switch (s.kind) {
+        case ShapeKind::circle: status = create_circle_shape(body.value, s.def, s.circle).status; break;
+        case ShapeKind::capsule: status = create_capsule_shape(body.value, s.def, s.capsule).status; break;
+        case ShapeKind::segment: status = create_segment_shape(body.value, s.def, s.segment).status; break;
+        case ShapeKind::polygon: status = create_polygon_shape(body.value, s.def, s.polygon).status; break;
+        case ShapeKind::chain:
+          status = create_chain_shapes(body.value, s.def, s.chain_points.data(),
+                                       static_cast<int32_t>(s.chain_points.size()), s.chain_loop, nullptr);
+          break;
+      }
+      if (!status.ok()) return refuse(i < b.shape_paths.size() ? b.shape_paths[i] : b.path, status);
+    }
+    built.bodies.push_back(body.value);
+  }
+  out.value = std::move(built);
+  return out;
+}
+
+std::vector<Command> scene_inputs_at(const BuiltScene& built, const Scene& scene, int64_t tick) {
+  std::vector<Command> out;
+  auto it = std::lower_bound(scene.inputs.begin(), scene.inputs.end(), tick,
+                             [](const SceneInput& in, int64_t t) { return in.tick < t; });
+  for (; it != scene.inputs.end() && it->tick == tick; ++it) {
+    Command c = it->command;
+    if (it->body >= 0 && static_cast<size_t>(it->body) < built.bodies.size())
+      c.body = body_ref(built.bodies[static_cast<size_t>(it->body)]);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+Status apply_scene_inputs(const BuiltScene& built, const Scene& scene, int64_t tick) {
+  auto it = std::lower_bound(scene.inputs.begin(), scene.inputs.end(), tick,
+                             [](const SceneInput& in, int64_t t) { return in.tick < t; });
+  const std::vector<Command> commands = scene_inputs_at(built, scene, tick);
+  for (const Command& c : commands) {
+    const Status status = apply_command(built.world, c);
+    if (!status.ok())
+      return error_status(scene.name + ": " + it->path + " (tick " + std::to_string(tick) + "): " + status.message);
+    ++it;
+  }
+  return {};
+}
+
+std::vector<Command> scene_create_commands(const Scene& scene) {
+  std::vector<Command> out;
+  out.reserve(scene.bodies.size());
+  for (const SceneBody& b : scene.bodies) out.push_back(make_create_body(b.def, b.shapes));
+  return out;
+}
+
+std::vector<std::string> scene_format_keys() {
+  std::vector<std::string> out;
+  for (const auto* list : {&k_top_keys, &k_view_keys, &k_world_keys, &k_body_keys, &k_shape_common_keys,
+                           &k_circle_keys, &k_capsule_keys, &k_box_keys, &k_polygon_keys, &k_segment_keys,
+                           &k_chain_keys, &k_filter_keys, &k_generator_grid_keys, &k_generator_pyramid_keys,
+                           &k_generator_random_keys, &k_input_common_keys, &k_input_value_keys, &k_names})
+    out.insert(out.end(), list->begin(), list->end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace tandem::scene
