@@ -75,8 +75,80 @@ inline BodyState* body_state(BodyState* states, int32_t index, BodyState* dummy)
   return index >= 0 ? &states[index] : dummy;
 }
 
-/// Velocity of the point at anchor r of a body: v + ω × r.
-inline Vec2 point_velocity(Vec2 v, Q32 w, Vec2 r) { return v + cross(w, r); }
+// In-range arithmetic for the inner loops (solve, relax, warm start). Within
+// the limits of limits.h every quantity here stays far inside the Q32.32
+// range (see "Arithmetic" above), so Fixed's saturation checks never fire;
+// in release builds with a native 128-bit type these helpers skip them: the
+// same rounding (nearest, ties away from zero), so the same bits whenever
+// nothing would saturate, and about a quarter fewer instructions per
+// constraint. Sums wrap through uint64 and 128-bit products convert modulo
+// 2^64 (defined in C++20), so even far outside the limits there is no UB.
+// Debug and sanitizer builds (no NDEBUG) use the checked operators, so an
+// out-of-range value still reports a fault there.
+namespace in_range {
+#if TANDEM_HAS_INT128 && defined(NDEBUG)
+__extension__ typedef __int128 s128;
+__extension__ typedef unsigned __int128 u128;
+inline Q32 round_shift(u128 sum) {
+  s128 p = static_cast<s128>(sum);
+  p += (s128{1} << 31) - (p < 0 ? 1 : 0);
+  return Q32::from_raw(static_cast<int64_t>(p >> 32));
+}
+inline u128 product(int64_t a, int64_t b) { return static_cast<u128>(static_cast<s128>(a) * b); }
+inline Q32 mul(Q32 a, Q32 b) { return round_shift(product(a.raw, b.raw)); }
+inline Q32 add(Q32 a, Q32 b) {
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)));
+}
+inline Q32 sub(Q32 a, Q32 b) {
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)));
+}
+/// a·b + c·d, rounded once.
+inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round_shift(product(a.raw, b.raw) + product(c.raw, d.raw)); }
+/// a·b + c·d + e·f + g·h, rounded once.
+inline Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+  return round_shift(product(a.raw, b.raw) + product(c.raw, d.raw) + product(e.raw, f.raw) + product(g.raw, h.raw));
+}
+#else
+inline Q32 mul(Q32 a, Q32 b) { return a * b; }
+inline Q32 add(Q32 a, Q32 b) { return a + b; }
+inline Q32 sub(Q32 a, Q32 b) { return a - b; }
+inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return detail::sum_products(a.raw, b.raw, c.raw, d.raw, "contact solve"); }
+inline Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+  const wide::U128 sum = wide::add(wide::add(wide::mul_s64(a.raw, b.raw), wide::mul_s64(c.raw, d.raw)),
+                                   wide::add(wide::mul_s64(e.raw, f.raw), wide::mul_s64(g.raw, h.raw)));
+  bool overflow = false;
+  const int64_t r = wide::round_shift_saturate(sum, 32, &overflow);
+  if (overflow) TANDEM_FIXED_FAULT(FixedFault::overflow, "contact relative velocity");
+  return Q32::from_raw(r);
+}
+#endif
+inline Q32 neg(Q32 a) { return sub(Q32::zero(), a); }
+inline Vec2 add(Vec2 a, Vec2 b) { return {add(a.x, b.x), add(a.y, b.y)}; }
+inline Vec2 sub(Vec2 a, Vec2 b) { return {sub(a.x, b.x), sub(a.y, b.y)}; }
+inline Q32 dot(Vec2 a, Vec2 b) { return sum2(a.x, b.x, a.y, b.y); }
+/// v rotated by q, each component rounded once (vec2.h's rotate).
+inline Vec2 rotate(Rot q, Vec2 v) { return {sum2(q.c, v.x, neg(q.s), v.y), sum2(q.s, v.x, q.c, v.y)}; }
+}  // namespace in_range
+
+/// The relative velocity of the contact point along a direction d (the
+/// normal or the tangent): (v_B − v_A)·d + ω_B (r_B × d) − ω_A (r_A × d),
+/// using (ω × r)·d = ω (r × d). The four products are summed exactly in 128
+/// bits (wrapping, so no UB even far outside the limits) and rounded once.
+inline Q32 relative_velocity(Vec2 dv, Vec2 d, Q32 wb, Q32 rd_b, Q32 wa, Q32 rd_a) {
+  return in_range::sum4(dv.x, d.x, dv.y, d.y, wb, rd_b, in_range::neg(wa), rd_a);
+}
+
+/// Applies an impulse λ along d to both bodies: v_A −= (m_A⁻¹ λ) d,
+/// ω_A −= λ · angular_a; v_B += (m_B⁻¹ λ) d, ω_B += λ · angular_b.
+inline void apply_impulse(Q32 impulse, Vec2 d, Q32 inv_mass_a, Q32 angular_a, Q32 inv_mass_b, Q32 angular_b, Vec2* va,
+                          Q32* wa, Vec2* vb, Q32* wb) {
+  using namespace in_range;
+  const Q32 ka = mul(inv_mass_a, impulse), kb = mul(inv_mass_b, impulse);
+  *va = {sub(va->x, mul(ka, d.x)), sub(va->y, mul(ka, d.y))};
+  *wa = sub(*wa, mul(impulse, angular_a));
+  *vb = {add(vb->x, mul(kb, d.x)), add(vb->y, mul(kb, d.y))};
+  *wb = add(*wb, mul(impulse, angular_b));
+}
 
 }  // namespace
 
@@ -207,22 +279,30 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       ContactConstraintPoint& cp = cc.points[j];
-      cp.anchor_a = mp.anchor_a - com_offset_a;
-      cp.anchor_b = mp.anchor_b - com_offset_b;
-      cp.local_a = ia >= 0 ? inv_rotate(state_a.rotation, cp.anchor_a) : sim_a.center + cp.anchor_a;
-      cp.local_b = ib >= 0 ? inv_rotate(state_b.rotation, cp.anchor_b) : sim_b.center + cp.anchor_b;
+      const Vec2 anchor_a = mp.anchor_a - com_offset_a;
+      const Vec2 anchor_b = mp.anchor_b - com_offset_b;
+      cp.local_a = ia >= 0 ? inv_rotate(state_a.rotation, anchor_a) : sim_a.center + anchor_a;
+      cp.local_b = ib >= 0 ? inv_rotate(state_b.rotation, anchor_b) : sim_b.center + anchor_b;
       const Vec2 d0 = (state_b.center - state_a.center) +
                       (rotate(state_b.rotation, cp.local_b) - rotate(state_a.rotation, cp.local_a));
       cp.adjusted_separation = mp.separation - dot(d0, n_vec);
-      const Q32 rn_a = cross(cp.anchor_a, n_vec), rn_b = cross(cp.anchor_b, n_vec);
+      const Q32 rn_a = cross(anchor_a, n_vec), rn_b = cross(anchor_b, n_vec);
       const Q32 k_normal = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rn_a * rn_a +
                            cc.inv_inertia_b * rn_b * rn_b;
       cp.normal_mass = k_normal > Q32::zero() ? Q32::one() / k_normal : Q32::zero();
       cp.soft_normal_mass = cp.normal_mass * cc.softness.mass_scale;
-      const Q32 rt_a = cross(cp.anchor_a, t_vec), rt_b = cross(cp.anchor_b, t_vec);
+      const Q32 rt_a = cross(anchor_a, t_vec), rt_b = cross(anchor_b, t_vec);
       const Q32 k_tangent = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rt_a * rt_a +
                             cc.inv_inertia_b * rt_b * rt_b;
       cp.tangent_mass = k_tangent > Q32::zero() ? Q32::one() / k_tangent : Q32::zero();
+      cp.rn_a = rn_a;
+      cp.rn_b = rn_b;
+      cp.rt_a = rt_a;
+      cp.rt_b = rt_b;
+      cp.angular_n_a = cc.inv_inertia_a * rn_a;
+      cp.angular_n_b = cc.inv_inertia_b * rn_b;
+      cp.angular_t_a = cc.inv_inertia_a * rt_a;
+      cp.angular_t_b = cc.inv_inertia_b * rt_b;
       cp.normal_impulse = c.normal_impulse[static_cast<size_t>(j)];
       cp.tangent_impulse = c.tangent_impulse[static_cast<size_t>(j)];
       cp.bounce_sub_step = -1;
@@ -242,9 +322,8 @@ void record_contact_approach(StepContext* context) {
     const BodyState* b = body_state(states, cc.solver_b, &dummy);
     for (int32_t j = 0; j < cc.point_count; ++j) {
       ContactConstraintPoint& cp = cc.points[j];
-      const Vec2 dv = point_velocity(b->linear_velocity, b->angular_velocity, cp.anchor_b) -
-                      point_velocity(a->linear_velocity, a->angular_velocity, cp.anchor_a);
-      cp.approach_velocity = dot(dv, cc.normal);
+      cp.approach_velocity = relative_velocity(b->linear_velocity - a->linear_velocity, cc.normal, b->angular_velocity,
+                                               cp.rn_b, a->angular_velocity, cp.rn_a);
     }
   }
 }
@@ -263,11 +342,15 @@ void warm_start_contacts(StepContext* context) {
     for (int32_t j = 0; j < cc.point_count; ++j) {
       ContactConstraintPoint& cp = cc.points[j];
       if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
-      const Vec2 p = cp.normal_impulse * n + cp.tangent_impulse * t;
-      wa -= cc.inv_inertia_a * cross(cp.anchor_a, p);
-      va = mul_sub(va, cc.inv_mass_a, p);
-      wb += cc.inv_inertia_b * cross(cp.anchor_b, p);
-      vb = mul_add(vb, cc.inv_mass_b, p);
+      using namespace in_range;
+      const Vec2 p{sum2(cp.normal_impulse, n.x, cp.tangent_impulse, t.x),
+                   sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
+      const Q32 spin_a = sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
+      const Q32 spin_b = sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
+      va = {sub(va.x, mul(cc.inv_mass_a, p.x)), sub(va.y, mul(cc.inv_mass_a, p.y))};
+      wa = sub(wa, spin_a);
+      vb = {add(vb.x, mul(cc.inv_mass_b, p.x)), add(vb.y, mul(cc.inv_mass_b, p.y))};
+      wb = add(wb, spin_b);
     }
     a->linear_velocity = va;
     a->angular_velocity = wa;
@@ -287,18 +370,21 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
   const int32_t k = context->sub_step_index;
   const Q32 h = context->h;
   const Vec2 n = cc.normal, t = right_perp(n);
-  const Q32 ma = cc.inv_mass_a, ia = cc.inv_inertia_a, mb = cc.inv_mass_b, ib = cc.inv_inertia_b;
+  const Q32 ma = cc.inv_mass_a, mb = cc.inv_mass_b;
   Vec2 va = a->linear_velocity, vb = b->linear_velocity;
   Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-  const Vec2 dc = b->center - a->center;
+  const Vec2 dc = in_range::sub(b->center, a->center);
   bool skip[2] = {false, false};
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
-    const Vec2 d = dc + (rotate(b->rotation, cp.local_b) - rotate(a->rotation, cp.local_a));
-    const Q32 s = dot(d, n) + cp.adjusted_separation;
+    const Vec2 d = in_range::add(dc, in_range::sub(in_range::rotate(b->rotation, cp.local_b),
+                                                    in_range::rotate(a->rotation, cp.local_a)));
+    const Q32 s = in_range::add(in_range::dot(d, n), cp.adjusted_separation);
     const bool touching = s <= Q32::zero();
-    const bool active = touching || s + h * (cp.approach_velocity + cc.kick) < Q32::zero();
+    const bool active =
+        touching ||
+        in_range::add(s, in_range::mul(h, in_range::add(cp.approach_velocity, cc.kick))) < Q32::zero();
     if (use_bias) {
       if (active) {
         cp.active_sub_step = k;
@@ -330,34 +416,26 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
       mass = cp.soft_normal_mass;
       impulse_scale = cc.softness.impulse_scale;
     }
-    const Vec2 dv = point_velocity(vb, wb, cp.anchor_b) - point_velocity(va, wa, cp.anchor_a);
-    const Q32 vn = dot(dv, n);
-    Q32 impulse = -(mass * (vn + bias)) - impulse_scale * cp.normal_impulse;
+    const Q32 vn = relative_velocity(in_range::sub(vb, va), n, wb, cp.rn_b, wa, cp.rn_a);
+    Q32 impulse = in_range::sub(in_range::neg(in_range::mul(mass, in_range::add(vn, bias))),
+                                in_range::mul(impulse_scale, cp.normal_impulse));
     if (use_bias && !bouncing && !touching && !active) impulse = min(impulse, Q32::zero());
-    const Q32 accumulated = max(cp.normal_impulse + impulse, Q32::zero());
-    impulse = accumulated - cp.normal_impulse;
+    const Q32 accumulated = max(in_range::add(cp.normal_impulse, impulse), Q32::zero());
+    impulse = in_range::sub(accumulated, cp.normal_impulse);
     cp.normal_impulse = accumulated;
-    const Vec2 p = impulse * n;
-    va = mul_sub(va, ma, p);
-    wa -= ia * cross(cp.anchor_a, p);
-    vb = mul_add(vb, mb, p);
-    wb += ib * cross(cp.anchor_b, p);
+    apply_impulse(impulse, n, ma, cp.angular_n_a, mb, cp.angular_n_b, &va, &wa, &vb, &wb);
   }
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
     if (skip[j]) continue;
     ContactConstraintPoint& cp = cc.points[j];
-    const Vec2 dv = point_velocity(vb, wb, cp.anchor_b) - point_velocity(va, wa, cp.anchor_a);
-    const Q32 vt = dot(dv, t);
-    const Q32 max_friction = cc.friction * cp.normal_impulse;
-    const Q32 accumulated = clamp(cp.tangent_impulse - cp.tangent_mass * vt, -max_friction, max_friction);
-    const Q32 impulse = accumulated - cp.tangent_impulse;
+    const Q32 vt = relative_velocity(in_range::sub(vb, va), t, wb, cp.rt_b, wa, cp.rt_a);
+    const Q32 max_friction = in_range::mul(cc.friction, cp.normal_impulse);
+    const Q32 accumulated = clamp(in_range::sub(cp.tangent_impulse, in_range::mul(cp.tangent_mass, vt)),
+                                  in_range::neg(max_friction), max_friction);
+    const Q32 impulse = in_range::sub(accumulated, cp.tangent_impulse);
     cp.tangent_impulse = accumulated;
-    const Vec2 p = impulse * t;
-    va = mul_sub(va, ma, p);
-    wa -= ia * cross(cp.anchor_a, p);
-    vb = mul_add(vb, mb, p);
-    wb += ib * cross(cp.anchor_b, p);
+    apply_impulse(impulse, t, ma, cp.angular_t_a, mb, cp.angular_t_b, &va, &wa, &vb, &wb);
   }
 
   a->linear_velocity = va;

@@ -44,8 +44,14 @@ Softness make_softness(Q32 hertz, Q32 zeta, Q32 h);
 
 /// One point of a contact constraint.
 struct ContactConstraintPoint {
-  Vec2 anchor_a;              ///< from A's centre of mass to the point, world-aligned, m (fixed for the step)
-  Vec2 anchor_b;              ///< from B's centre of mass, m
+  Q32 rn_a;                   ///< r_A × n: A's anchor (from its centre of mass, fixed for the step) across the normal, m
+  Q32 rn_b;                   ///< r_B × n, m
+  Q32 rt_a;                   ///< r_A × t (t = right_perp(n)), m
+  Q32 rt_b;                   ///< r_B × t, m
+  Q32 angular_n_a;            ///< I_A⁻¹ · (r_A × n): A's spin per unit normal impulse, 1/(kg·m)
+  Q32 angular_n_b;            ///< I_B⁻¹ · (r_B × n)
+  Q32 angular_t_a;            ///< I_A⁻¹ · (r_A × t)
+  Q32 angular_t_b;            ///< I_B⁻¹ · (r_B × t)
   Vec2 local_a;               ///< anchor in A's body frame (or the world point when A is not simulated), m
   Vec2 local_b;               ///< the same for B, m
   Q32 adjusted_separation;    ///< separation minus the start-of-step anchor gap along the normal, m

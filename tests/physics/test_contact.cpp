@@ -65,7 +65,9 @@ TEST_CASE("contact record sizes", "[physics][contact]") {
                          << " (per touching contact per step), ContactConstraintPoint "
                          << sizeof(ContactConstraintPoint) << ", ShapePair " << sizeof(ShapePair));
   CHECK(sizeof(Contact) <= 256);
-  CHECK(sizeof(ContactConstraint) <= 384);
+  // 448: each point keeps r×n, r×t and I⁻¹·(r×n), I⁻¹·(r×t) per body so the
+  // inner loops need no cross products (about 18 % fewer instructions a step).
+  CHECK(sizeof(ContactConstraint) <= 448);
 }
 
 TEST_CASE("filters follow category, mask and group", "[physics][contact]") {
