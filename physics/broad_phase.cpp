@@ -41,16 +41,31 @@ bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b)
   const Body& bb = world.bodies[static_cast<size_t>(b.body_index)];
   if (!ba.enabled || !bb.enabled) return false;
   if (ba.type != BodyType::dynamic_body && bb.type != BodyType::dynamic_body) return false;
-  return filters_should_collide(a.filter, b.filter);
+  if (!filters_should_collide(a.filter, b.filter)) return false;
+  const BroadPhase& bp = world.broad_phase;
+  if (bp.custom_filter == nullptr) return true;
+  const int32_t lower = shape_a < shape_b ? shape_a : shape_b;
+  const int32_t higher = shape_a < shape_b ? shape_b : shape_a;
+  return bp.custom_filter(make_shape_id(world, lower), make_shape_id(world, higher), bp.custom_context);
 }
 
 namespace {
 
 /// The filters after the box test: shapes_should_collide, then the custom
-/// filter with (lower, higher).
+/// filter with (lower, higher). Both shapes are proxies (not sensors, bodies
+/// enabled) and one is dynamic, so shapes_should_collide reduces to
+/// "different bodies and the filters agree", read from the pre-pass's dense
+/// copy (the same values, so the same answer).
 bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
-  if (!shapes_should_collide(*world, lower, higher)) return false;
   const BroadPhase& bp = world->broad_phase;
+  const ProxyFilter& fa = bp.shape_filter[static_cast<size_t>(lower)];
+  const ProxyFilter& fb = bp.shape_filter[static_cast<size_t>(higher)];
+  if (fa.body == fb.body) return false;
+  if (fa.group_index == fb.group_index && fa.group_index != 0) {
+    if (fa.group_index < 0) return false;
+  } else if ((fa.category_bits & fb.mask_bits) == 0 || (fb.category_bits & fa.mask_bits) == 0) {
+    return false;
+  }
   if (bp.custom_filter == nullptr) return true;
   return bp.custom_filter(make_shape_id(*world, lower), make_shape_id(*world, higher), bp.custom_context);
 }
@@ -65,6 +80,7 @@ void gather_proxies(World* world) {
   bp.proxy_dynamic.clear();
   if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
   if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
+  if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
   for (int32_t s = 0; s < capacity; ++s) {
     const size_t si = static_cast<size_t>(s);
     bp.shape_kind[si] = k_proxy_none;
@@ -76,6 +92,8 @@ void gather_proxies(World* world) {
     const AABB fat = aabb_fatten(shape.aabb, k_speculative_distance);
     bp.shape_kind[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
     bp.shape_fat[si] = fat;
+    bp.shape_filter[si] =
+        ProxyFilter{shape.body_index, shape.filter.group_index, shape.filter.category_bits, shape.filter.mask_bits};
     bp.proxies.push_back(s);
     bp.fat_bounds.push_back(fat);
     bp.proxy_dynamic.push_back(dynamic ? 1 : 0);
@@ -222,6 +240,7 @@ void broad_phase_reserve_headroom(World* world) {
   reserve_for(&bp.proxy_dynamic, shapes);
   reserve_for(&bp.shape_fat, shapes);
   reserve_for(&bp.shape_kind, shapes);
+  reserve_for(&bp.shape_filter, shapes);
   reserve_for(&bp.counts, shapes + 1);
   reserve_for(&bp.sap.endpoints, 2 * shapes);
   reserve_for(&bp.sap.merged, 2 * shapes);

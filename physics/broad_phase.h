@@ -123,7 +123,16 @@ struct DynamicTree {
   int32_t root = -1;
   int32_t free_list = -1;             ///< LIFO list through TreeNode::parent
   std::vector<int32_t> leaf_of_shape; ///< by shape index: leaf node or −1
-  std::vector<int32_t> stack;         ///< query scratch
+  std::vector<int32_t> stack;         ///< traversal scratch (node pairs)
+};
+
+/// What the pair filter needs of a proxy, copied by the pre-pass into one
+/// dense array so the filter does not chase Shape and Body records.
+struct ProxyFilter {
+  int32_t body = -1;
+  int32_t group_index = 0;
+  uint64_t category_bits = 0;
+  uint64_t mask_bits = 0;
 };
 
 /// Broad-phase state kept between steps (buffers that only grow).
@@ -134,6 +143,7 @@ struct BroadPhase {
   std::vector<uint8_t> proxy_dynamic;  ///< scratch: 1 when on a dynamic body, parallel to proxies
   std::vector<AABB> shape_fat;    ///< by shape index: fattened bounds (valid where shape_kind ≠ none)
   std::vector<uint8_t> shape_kind;     ///< by shape index: k_proxy_*
+  std::vector<ProxyFilter> shape_filter;  ///< by shape index: body and filter (valid for proxies)
   std::vector<uint64_t> unsorted; ///< scratch: emitted keys in the structure's visiting order
   std::vector<int32_t> counts;    ///< scratch: counting sort by lower index
   SweepAndPrune sap;
@@ -151,8 +161,8 @@ struct BroadPhase {
 bool filters_should_collide(const Filter& a, const Filter& b);
 
 /// True when two live shapes may form a contact: different bodies, neither a
-/// sensor, both bodies enabled, at least one body dynamic, and the filters
-/// agree.
+/// sensor, both bodies enabled, at least one body dynamic, the filters agree,
+/// and the world's custom filter (if any) accepts (lower, higher).
 bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b);
 
 /// Recomputes world->broad_phase.pairs (see the contract above) with the
@@ -188,9 +198,6 @@ void sap_reset(SweepAndPrune* sap);
 void grid_update(World* world);
 void tree_update(World* world);
 void tree_reset(DynamicTree* tree);
-/// Every live leaf's shape whose tree box overlaps `box`, appended to *out
-/// (any order). Tree boxes contain the fattened shape bounds.
-void tree_query(const DynamicTree& tree, AABB box, std::vector<int32_t>* stack, std::vector<int32_t>* out);
 /// Checks the tree's structure (parents, heights, boxes containing children);
 /// for tests. Returns the number of leaves, or −1 when broken.
 int32_t tree_validate(const DynamicTree& tree);

@@ -22,16 +22,21 @@
 // fewer, then the outliers after it. Cost O(outliers × min(cells, n)).
 //
 // Cells: integer coordinates floor((lower + upper) / 2S) of the raw Q32 sums
-// (one division per axis per proxy; exact). Packed (uint32 cx, uint32 cy)
-// keys are hashed by a fixed 64-bit mixer into a power-of-two table ≥ 2× the
-// proxies; a counting sort by bucket places the entries (ascending shape
-// index inside a bucket), and a lookup compares the full cell key, so hash
-// collisions only cost time. Nothing depends on addresses or on a hash map's
+// (one division per axis per proxy; exact). When the occupied cell range has
+// at most 4n + 64 cells (crowded scenes, the common case) the buckets are
+// that range's cells in row-major order: a cell's forward neighbours are the
+// next bucket and three consecutive buckets one row up, so the search reads
+// nearby memory and compares no keys (~2× faster than hashing at 16k
+// circles). Otherwise (sparse worlds) packed (uint32 cx, uint32 cy) keys are
+// hashed by a fixed 64-bit mixer into a power-of-two table ≥ 2× the proxies,
+// and a lookup compares the full cell key, so collisions only cost time.
+// Either way a counting sort by bucket places the entries (ascending shape
+// index inside a bucket). Nothing depends on addresses or on a hash map's
 // iteration order.
 //
-// Rejected: a dense 2D array (sized by the scene's spread, unbounded memory
-// for sparse worlds); inserting each proxy into every cell its box overlaps
-// (duplicates to remove).
+// Rejected: a dense array only (memory grows with the scene's spread);
+// inserting each proxy into every cell its box overlaps (duplicates to
+// remove).
 #include <bit>
 
 #include "physics/broad_phase.h"
@@ -149,14 +154,34 @@ void grid_update(World* world) {
     ++grid_count;
   }
 
-  // Counting sort of the grid proxies into hash buckets.
-  const uint32_t bits = static_cast<uint32_t>(std::bit_width(2 * grid_count + 15));
+  // Buckets: a dense row-major array of the occupied cell range when it has
+  // at most 4n + 64 cells (neighbours are then adjacent in memory and need no
+  // key compare), otherwise a hash table ≥ 2n buckets. Then a counting sort
+  // of the grid proxies by bucket (stable: ascending shape index inside one).
+  const uint64_t width = grid_count > 0 ? static_cast<uint64_t>(max_cx - min_cx) + 1 : 1;
+  const uint64_t height = grid_count > 0 ? static_cast<uint64_t>(max_cy - min_cy) + 1 : 1;
+  const bool dense = width * height <= 4 * static_cast<uint64_t>(grid_count) + 64;
+  uint32_t bits = 0;
+  size_t table = 0;
+  if (dense) {
+    table = static_cast<size_t>(width * height);
+  } else {
+    bits = static_cast<uint32_t>(std::bit_width(2 * grid_count + 15));
+    table = size_t{1} << bits;
+  }
   g.bucket_bits = bits;
-  const size_t table = size_t{1} << bits;
   g.bucket_start.assign(table + 1, 0);
   for (size_t i = 0; i < n; ++i) {
-    if (g.proxy_cell[i] == k_outlier_cell) continue;
-    const uint32_t b = cell_bucket(g.proxy_cell[i], bits);
+    const uint64_t key = g.proxy_cell[i];
+    if (key == k_outlier_cell) continue;
+    uint32_t b;
+    if (dense) {
+      const int64_t cx = static_cast<int32_t>(static_cast<uint32_t>(key >> 32));
+      const int64_t cy = static_cast<int32_t>(static_cast<uint32_t>(key & 0xFFFFFFFFu));
+      b = static_cast<uint32_t>(static_cast<uint64_t>(cy - min_cy) * width + static_cast<uint64_t>(cx - min_cx));
+    } else {
+      b = cell_bucket(key, bits);
+    }
     g.proxy_bucket[i] = b;
     ++g.bucket_start[b + 1];
   }
@@ -174,23 +199,53 @@ void grid_update(World* world) {
   const uint32_t* starts = g.bucket_start.data();
   int64_t candidates = 0;
 
-  // Grid against grid: own cell (later entries) and the forward neighbours.
-  static constexpr int64_t k_forward[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-  for (size_t b = 0; b < table; ++b) {
-    const uint32_t end = starts[b + 1];
-    for (uint32_t ei = starts[b]; ei < end; ++ei) {
-      const GridEntry& e = entries[ei];
-      for (uint32_t ej = ei + 1; ej < end; ++ej) {
-        if (entries[ej].cell == e.cell) test_entries(world, e, entries[ej], &candidates);
+  // Grid against grid: own cell (later entries) and the forward neighbours
+  // (+1,0), (−1,+1), (0,+1), (+1,+1).
+  if (dense) {
+    const size_t w = static_cast<size_t>(width);
+    const size_t h = static_cast<size_t>(height);
+    for (size_t y = 0; y < h; ++y) {
+      for (size_t x = 0; x < w; ++x) {
+        const size_t c = y * w + x;
+        const uint32_t end = starts[c + 1];
+        if (starts[c] == end) continue;
+        // Forward ranges: the right cell, and the up to three cells above
+        // (contiguous in the dense order).
+        const uint32_t right_begin = x + 1 < w ? starts[c + 1] : 0;
+        const uint32_t right_end = x + 1 < w ? starts[c + 2] : 0;
+        uint32_t up_begin = 0, up_end = 0;
+        if (y + 1 < h) {
+          const size_t x0 = x > 0 ? x - 1 : x;
+          const size_t x1 = x + 1 < w ? x + 1 : x;
+          up_begin = starts[(y + 1) * w + x0];
+          up_end = starts[(y + 1) * w + x1 + 1];
+        }
+        for (uint32_t ei = starts[c]; ei < end; ++ei) {
+          const GridEntry& e = entries[ei];
+          for (uint32_t ej = ei + 1; ej < end; ++ej) test_entries(world, e, entries[ej], &candidates);
+          for (uint32_t ej = right_begin; ej < right_end; ++ej) test_entries(world, e, entries[ej], &candidates);
+          for (uint32_t ej = up_begin; ej < up_end; ++ej) test_entries(world, e, entries[ej], &candidates);
+        }
       }
-      const int64_t cx = static_cast<int32_t>(static_cast<uint32_t>(e.cell >> 32));
-      const int64_t cy = static_cast<int32_t>(static_cast<uint32_t>(e.cell & 0xFFFFFFFFu));
-      for (const auto& d : k_forward) {
-        const uint64_t key = pack_cell(cx + d[0], cy + d[1]);
-        const uint32_t nb = cell_bucket(key, bits);
-        const uint32_t nend = starts[nb + 1];
-        for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
-          if (entries[ej].cell == key) test_entries(world, e, entries[ej], &candidates);
+    }
+  } else {
+    static constexpr int64_t k_forward[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    for (size_t b = 0; b < table; ++b) {
+      const uint32_t end = starts[b + 1];
+      for (uint32_t ei = starts[b]; ei < end; ++ei) {
+        const GridEntry& e = entries[ei];
+        for (uint32_t ej = ei + 1; ej < end; ++ej) {
+          if (entries[ej].cell == e.cell) test_entries(world, e, entries[ej], &candidates);
+        }
+        const int64_t cx = static_cast<int32_t>(static_cast<uint32_t>(e.cell >> 32));
+        const int64_t cy = static_cast<int32_t>(static_cast<uint32_t>(e.cell & 0xFFFFFFFFu));
+        for (const auto& d : k_forward) {
+          const uint64_t key = pack_cell(cx + d[0], cy + d[1]);
+          const uint32_t nb = cell_bucket(key, bits);
+          const uint32_t nend = starts[nb + 1];
+          for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
+            if (entries[ej].cell == key) test_entries(world, e, entries[ej], &candidates);
+          }
         }
       }
     }
@@ -213,7 +268,15 @@ void grid_update(World* world) {
       y1 = y1 > max_cy ? max_cy : y1;
       if (x0 <= x1 && y0 <= y1) {
         const uint64_t cells = static_cast<uint64_t>(x1 - x0 + 1) * static_cast<uint64_t>(y1 - y0 + 1);
-        if (cells <= static_cast<uint64_t>(grid_count)) {
+        if (dense) {
+          const size_t w = static_cast<size_t>(width);
+          for (int64_t cy = y0; cy <= y1; ++cy) {
+            const size_t row = static_cast<size_t>(cy - min_cy) * w;
+            const uint32_t begin = starts[row + static_cast<size_t>(x0 - min_cx)];
+            const uint32_t end = starts[row + static_cast<size_t>(x1 - min_cx) + 1];
+            for (uint32_t ej = begin; ej < end; ++ej) test_entries(world, o, entries[ej], &candidates);
+          }
+        } else if (cells <= static_cast<uint64_t>(grid_count)) {
           for (int64_t cx = x0; cx <= x1; ++cx) {
             for (int64_t cy = y0; cy <= y1; ++cy) {
               const uint64_t key = pack_cell(cx, cy);

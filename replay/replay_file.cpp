@@ -140,6 +140,8 @@ Status run_tick(WorldId world, const TickRecord& record, Q32 time_step, const Pa
 }
 
 const Keyframe& Replay::keyframe_at_or_before(uint64_t tick) const {
+  static const Keyframe k_none{};
+  if (keyframes.empty()) return k_none;
   size_t best = 0;
   for (size_t i = 0; i < keyframes.size(); ++i)
     if (keyframes[i].tick <= tick) best = i;

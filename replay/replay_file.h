@@ -149,7 +149,8 @@ struct Replay {
 
   /// Number of ticks recorded.
   uint64_t tick_count() const { return ticks.size(); }
-  /// The last keyframe with tick ≤ `tick` (keyframes[0] if none later).
+  /// The last keyframe with tick ≤ `tick` (keyframes[0] if none is; an empty
+  /// keyframe with no state when there are no keyframes).
   const Keyframe& keyframe_at_or_before(uint64_t tick) const;
   /// Puts `world` into the state after `tick` ticks: restores the nearest
   /// keyframe ≤ tick, then runs the ticks after it (run_tick). Refuses tick >

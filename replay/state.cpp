@@ -18,6 +18,7 @@
 #include "replay/state.h"
 
 #include <algorithm>
+#include <utility>
 #include <array>
 #include <cstring>
 #include <string>
@@ -707,6 +708,26 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
     return bad("bodies list " + std::to_string(listed_shapes) + " shapes but " +
                std::to_string(img->shape_pool.alive_count) + " shapes are alive");
   }
+  // Geometry the narrow phase divides by or takes roots of.
+  for (int32_t i = 0; i < shape_cap; ++i) {
+    if (img->shape_pool.alive[static_cast<size_t>(i)] == 0) continue;
+    const ShapeGeometry& g = img->shape_geometries[static_cast<size_t>(i)];
+    bool valid = true;
+    switch (g.type) {
+      case ShapeType::circle: valid = g.circle.radius > Q32::zero(); break;
+      case ShapeType::capsule: valid = g.capsule.radius > Q32::zero() && g.capsule.center1 != g.capsule.center2; break;
+      case ShapeType::segment: valid = g.segment.point1 != g.segment.point2; break;
+      case ShapeType::polygon: valid = g.polygon.radius >= Q32::zero(); break;
+      case ShapeType::chain_segment:
+        valid = g.chain_segment.segment.point1 != g.chain_segment.segment.point2;
+        break;
+      case ShapeType::count: valid = false; break;
+    }
+    if (!valid) {
+      return at(img->shape_offsets[static_cast<size_t>(i)],
+                "shape " + std::to_string(i) + " has degenerate geometry (zero or negative radius, or coincident points)");
+    }
+  }
   uint64_t prev_key = 0;
   for (size_t i = 0; i < img->contacts.size(); ++i) {
     const Contact& c = img->contacts[i];
@@ -739,30 +760,26 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   return check_pairs(img->sensor_overlaps, "sensor overlap");
 }
 
-/// Replaces the world's state with a validated image.
+/// Replaces the world's state with a validated image. Vectors are swapped,
+/// so the scratch image keeps the world's old buffers for the next decode
+/// (no allocation in a warm rollback loop).
 void commit_image(World* w, WorldImage& img) {
   const int32_t cookie = w->def.internal_cookie;
   w->def = img.def;
   w->def.internal_cookie = cookie;
   w->step_count = img.step_count;
   w->last_solver_body_count = img.last_solver_body_count;
-  w->body_pool.generations = img.body_pool.generations;
-  w->body_pool.alive = img.body_pool.alive;
-  w->body_pool.free_heap = img.body_pool.free_heap;
-  w->body_pool.alive_count = img.body_pool.alive_count;
-  w->bodies = img.bodies;
-  w->body_sims = img.body_sims;
-  w->shape_pool.generations = img.shape_pool.generations;
-  w->shape_pool.alive = img.shape_pool.alive;
-  w->shape_pool.free_heap = img.shape_pool.free_heap;
-  w->shape_pool.alive_count = img.shape_pool.alive_count;
-  w->shapes = img.shapes;
-  w->shape_geometries = img.shape_geometries;
-  w->contacts = img.contacts;
+  std::swap(w->body_pool, img.body_pool);
+  std::swap(w->bodies, img.bodies);
+  std::swap(w->body_sims, img.body_sims);
+  std::swap(w->shape_pool, img.shape_pool);
+  std::swap(w->shapes, img.shapes);
+  std::swap(w->shape_geometries, img.shape_geometries);
+  std::swap(w->contacts, img.contacts);
   w->contact_scratch.clear();
   EventState& e = w->events;
-  e.touching = img.touching;
-  e.sensor_overlaps = img.sensor_overlaps;
+  std::swap(e.touching, img.touching);
+  std::swap(e.sensor_overlaps, img.sensor_overlaps);
   e.touching_next.clear();
   e.sensor_next.clear();
   e.hit_candidates.clear();
@@ -921,6 +938,145 @@ Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out) {
   DescribeVisitor v{out};
   visit_world(v, img, nullptr);
   return s;
+}
+
+// ---------------------------------------------------------------------------
+// Deltas
+// ---------------------------------------------------------------------------
+
+namespace {
+
+constexpr uint8_t k_delta_magic[4] = {'T', 'N', 'D', 'D'};
+constexpr uint32_t k_delta_version = 1;
+
+void put_varint(std::vector<uint8_t>* out, uint64_t v) {
+  while (v >= 0x80) {
+    out->push_back(static_cast<uint8_t>(v | 0x80));
+    v >>= 7;
+  }
+  out->push_back(static_cast<uint8_t>(v));
+}
+
+/// LEB128, at most 10 bytes; fails (false) on truncation or overlong input.
+bool get_varint(ByteReader* r, const char* what, uint64_t* out) {
+  uint64_t v = 0;
+  for (int shift = 0; shift < 64; shift += 7) {
+    const size_t at = r->offset();
+    const uint8_t b = r->u8(what);
+    if (!r->ok()) return false;
+    if (shift == 63 && b > 1) {
+      r->fail_at(at, std::string("expected ") + what + " (a varint below 2^64)");
+      return false;
+    }
+    v |= static_cast<uint64_t>(b & 0x7F) << shift;
+    if ((b & 0x80) == 0) {
+      *out = v;
+      return true;
+    }
+  }
+  r->fail(std::string("expected the end of varint ") + what);
+  return false;
+}
+
+uint8_t base_byte(const uint8_t* base, size_t base_size, size_t i) { return i < base_size ? base[i] : 0; }
+
+}  // namespace
+
+void encode_state_delta(const uint8_t* base, size_t base_size, const uint8_t* image, size_t image_size,
+                        std::vector<uint8_t>* out) {
+  out->clear();
+  ByteWriter header(out);
+  header.bytes(k_delta_magic, 4);
+  header.u32(k_delta_version);
+  header.u64(image_size);
+  header.u64(XXH3_64bits(base, base_size));
+  const size_t common = std::min(base_size, image_size);
+  size_t i = 0;
+  while (i < image_size) {
+    // A run of bytes equal to the base (only within the base).
+    size_t run = 0;
+    while (i + run + 8 <= common && std::memcmp(base + i + run, image + i + run, 8) == 0) run += 8;
+    while (i + run < common && base[i + run] == image[i + run]) ++run;
+    put_varint(out, run);
+    i += run;
+    if (i >= image_size) break;
+    // Literal bytes until 4 equal bytes in a row (or the end).
+    size_t end = i;
+    size_t same = 0;
+    while (end < image_size) {
+      if (end < common && base[end] == image[end]) {
+        if (++same == 4) {
+          end -= 3;
+          break;
+        }
+      } else {
+        same = 0;
+      }
+      ++end;
+    }
+    if (end >= image_size) end = image_size;
+    put_varint(out, end - i);
+    for (size_t k = i; k < end; ++k) out->push_back(static_cast<uint8_t>(image[k] ^ base_byte(base, base_size, k)));
+    i = end;
+  }
+}
+
+Status apply_state_delta(const uint8_t* base, size_t base_size, const uint8_t* delta, size_t delta_size,
+                         std::vector<uint8_t>* out_image) {
+  const auto bad = [](const std::string& msg) {
+    return make_status(StatusCode::invalid_argument, "apply_state_delta: " + msg);
+  };
+  if (delta == nullptr && delta_size != 0) return bad("null delta with size " + std::to_string(delta_size));
+  ByteReader r(delta, delta_size);
+  const std::span<const uint8_t> magic = r.bytes(4, "magic \"TNDD\"");
+  if (!r.ok()) return bad(r.error());
+  if (std::memcmp(magic.data(), k_delta_magic, 4) != 0) return bad("offset 0: expected magic \"TNDD\" (a state delta)");
+  const uint32_t version = r.u32("delta version");
+  if (r.ok() && version != k_delta_version) {
+    return bad("offset 4: expected delta version " + std::to_string(k_delta_version) + ", got " +
+               std::to_string(version));
+  }
+  const uint64_t image_size = r.u64("image size");
+  const uint64_t base_hash = r.u64("base hash");
+  if (!r.ok()) return bad(r.error());
+  if (base_hash != XXH3_64bits(base, base_size)) {
+    return bad("offset 16: the delta was made against another base (base hash differs)");
+  }
+  if (image_size > static_cast<uint64_t>(base_size) + delta_size) {
+    return bad("offset 8: expected an image size of at most " + std::to_string(base_size + delta_size) +
+               " (base + delta), got " + std::to_string(image_size));
+  }
+  const size_t n = static_cast<size_t>(image_size);
+  out_image->resize(n);
+  uint8_t* img = out_image->data();
+  size_t i = 0;
+  while (i < n) {
+    uint64_t run = 0;
+    const size_t run_at = r.offset();
+    if (!get_varint(&r, "unchanged run", &run)) return bad(r.error());
+    if (run > n - i || run > (i < base_size ? base_size - i : 0)) {
+      return bad("offset " + std::to_string(run_at) + ": expected an unchanged run within the base and the image (" +
+                 std::to_string(std::min(n - i, i < base_size ? base_size - i : 0)) + " bytes), got " +
+                 std::to_string(run));
+    }
+    if (run != 0) std::memcpy(img + i, base + i, static_cast<size_t>(run));
+    i += static_cast<size_t>(run);
+    if (i >= n) break;
+    uint64_t lit = 0;
+    const size_t lit_at = r.offset();
+    if (!get_varint(&r, "changed run", &lit)) return bad(r.error());
+    if (lit == 0 || lit > n - i || lit > r.remaining()) {
+      return bad("offset " + std::to_string(lit_at) + ": expected a changed run of 1.." +
+                 std::to_string(std::min(n - i, r.remaining())) + " bytes, got " + std::to_string(lit));
+    }
+    const std::span<const uint8_t> bytes = r.bytes(static_cast<size_t>(lit), "changed bytes");
+    for (size_t k = 0; k < bytes.size(); ++k, ++i) img[i] = static_cast<uint8_t>(bytes[k] ^ base_byte(base, base_size, i));
+  }
+  if (!r.at_end()) {
+    return bad("offset " + std::to_string(r.offset()) + ": expected the end of the delta, " +
+               std::to_string(r.remaining()) + " bytes left over");
+  }
+  return Status{};
 }
 
 std::string q32_raw_text(int64_t raw) {

@@ -3,15 +3,16 @@
 //
 // WHAT IS ENCODED: everything that can change a later tick or a later query.
 //   header    magic "TNDS", format version (k_state_format_version), kind (0)
-//   world     WorldDef (every field but the cookie), step count, the last
-//             step's simulated body count
+//   world     WorldDef (every field but the cookie: broad-phase kind and
+//             continuous collision included), step count, the last step's
+//             simulated body count
 //   pools     body and shape pools: capacity, then per slot generation and
 //             alive flag. The free list is NOT stored: IdPool hands out the
 //             lowest free slot (id_pool.h), so the free set — hence every
 //             future allocation — follows from the alive flags
 //   bodies    per live body, ascending index: Body (type, shape list head and
 //             count, mass, inertia, sleep timer, sleep island, user data,
-//             flags) then BodySim (pose, centres, velocities, pending force
+//             flags, shape extents for continuous collision) then BodySim (pose, centres, velocities, pending force
 //             and torque, inverse mass and inertia, damping, gravity scale)
 //   shapes    per live shape, ascending index: body, list links, type,
 //             materials, filter, user data, world AABB, flags, then the
@@ -26,7 +27,9 @@
 // records (reset to defaults on restore, as destroy does), polygon entries
 // past `count`, inactive geometry variants, and the broad phase, whose output
 // depends only on the shapes by contract (broad_phase.h): restore calls
-// broad_phase_reset().
+// broad_phase_reset(). The custom collision filter (a function pointer) is
+// not state: restore keeps the target world's, and a peer must install the
+// same one (create_world_from_snapshot starts without one).
 //
 // FORMAT. Explicit little-endian (replay/bytes.h): u8/u32/u64/i32/i64 as
 // such, Q32 as its raw int64, bools as one byte 0/1, Vec2 as x, y. Each
@@ -39,8 +42,11 @@
 //
 // RESTORE decodes the whole image into scratch, validates it (ranges, enum
 // values, index ranges, shape lists consistent with bodies, contacts sorted,
-// nothing left over) and only then replaces the world's state, so a refused
-// image leaves the world untouched. Handles stay valid: indices, generations
+// no raw INT64_MIN, non-degenerate radii and segments, nothing left over)
+// and only then replaces the world's state, so a refused image leaves the
+// world untouched. It checks structure, not physical plausibility: an image
+// edited to hold, say, a non-unit rotation or an absurd mass is accepted and
+// simulated as it is (the saturation rules of fixed/ then apply). Handles stay valid: indices, generations
 // and alive flags are those of the snapshot.
 //
 // HASH: XXH3-64 (seed 0) of the canonical encoding. Per-body hashes cover one
@@ -107,6 +113,32 @@ uint64_t body_state_hash(BodyId body);
 /// body_state_hash of every body slot in index order into *out (resized to
 /// the body pool's capacity); dead slots get 0. Refuses an invalid world.
 Status world_body_hashes(WorldId world, std::vector<uint64_t>* out);
+
+// ---------------------------------------------------------------------------
+// Compact rollback form: a delta against a base image
+// ---------------------------------------------------------------------------
+// A rollback keeps a base image (say, the last confirmed tick's) and, for the
+// ticks after it, deltas: the XOR of each image with the base, run-length
+// coded (runs of unchanged bytes cost a varint). Unchanged structure —
+// static bodies and their geometry, pools, materials, the high bytes of
+// most values — costs almost nothing; see tools/bench/bench_rollback.cpp for
+// measured sizes. Format: magic "TNDD", u32 version (1), u64 image size, u64
+// XXH3-64 of the base, then until the image is complete: varint (LEB128)
+// count of bytes equal to the base, varint count n, n bytes XOR base.
+// Copied runs must lie within the base, so the image size is bounded by
+// base size + delta size, checked before anything is allocated.
+
+/// Encodes `image` as a delta against `base` (both full state images, or
+/// any bytes) into *out (replaced).
+void encode_state_delta(const uint8_t* base, size_t base_size, const uint8_t* image, size_t image_size,
+                        std::vector<uint8_t>* out);
+
+/// Rebuilds the image from `base` and a delta made against it into
+/// *out_image (replaced). Refuses a wrong magic or version, a different base
+/// (hash mismatch), and truncated or inconsistent data, naming the byte
+/// offset; *out_image is unspecified on failure.
+Status apply_state_delta(const uint8_t* base, size_t base_size, const uint8_t* delta, size_t delta_size,
+                         std::vector<uint8_t>* out_image);
 
 // ---------------------------------------------------------------------------
 // Generic decoding and diffs

@@ -8,4 +8,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup-deps.sh demo
 cmake --preset release
 cmake --build build/release -j 2 --target tandem
-exec build/release/tandem demo "$@"
+exec build/release/tandem demo --out build/demo "$@"

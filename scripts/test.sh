@@ -8,8 +8,14 @@
 #   gcc-sanitize     g++, ASan + UBSan, no recovery, fault checks on
 #   clang-sanitize   clang, ASan + UBSan, no recovery, fault checks on
 #   portable-int128  g++ release on wide.h's portable 128-bit path
-#   i686             32-bit x86, no __int128, static; fixed/ tests only
-#   s390x            big-endian, under qemu-user; fixed/ tests only
+#   i686             32-bit x86, no __int128, static; fixed/ tests + golden chains
+#   s390x            big-endian, under qemu-user; fixed/ tests + golden chains
+#   aarch64          under qemu-user; golden chains + fixed-point golden hash
+#   mingw64          Windows x86-64 under wine64; golden chains + fixed golden hash
+#   wasm32           wasm32-wasi under node; golden chains + fixed golden hash
+# (golden chains: tests/golden, the 13 scenes' hash chains; the native builds
+# also run their broad-phase and snapshot/restore variants. The full
+# cross-platform matrix is tools/matrix.sh, not run here: docs/determinism.md.)
 #
 # Usage: scripts/test.sh [--clean] [BUILD...]   (default: all builds above)
 #   --clean  delete each build directory first
@@ -20,13 +26,13 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 1
 
-all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x)
+all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 mingw64 wasm32)
 clean=0
 builds=()
 for arg in "$@"; do
   case "$arg" in
     --clean) clean=1 ;;
-    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
     *) builds+=("$arg") ;;
   esac
@@ -63,11 +69,14 @@ run_build() {
   local t_cfg=0 t_bld=0 t_tst=0 t0 b0 log
   local build_args=() ctest_args=()
   case "$name" in
-    # Cross builds check the fixed-point core only (the physics tests would
-    # take too long under emulation).
+    # Cross builds check the fixed-point core and the golden hash chains (the
+    # other physics tests would take too long under emulation).
     i686|s390x)
-      build_args=(--target tandem_tests_fixed)
-      ctest_args=(-R '^fixed/') ;;
+      build_args=(--target tandem_tests_fixed tandem_tests_golden)
+      ctest_args=(-R '^fixed/|^golden/golden chain: [a-z_0-9]+$') ;;
+    aarch64|mingw64|wasm32)
+      build_args=(--target tandem_tests_fixed tandem_tests_golden)
+      ctest_args=(-R '^golden/golden chain: [a-z_0-9]+$|^fixed/fixed_math gives the same bits') ;;
     gcc-release) ;;  # the one build that also runs the determinism lint
     *) ctest_args=(-E '^determinism lint') ;;
   esac

@@ -3,7 +3,9 @@
 # through wasi-run.mjs. WASI has no exceptions in clang 14 and no signals:
 # -fno-exceptions with Catch2's CATCH_CONFIG_DISABLE_EXCEPTIONS (a failed
 # REQUIRE ends the run) and CATCH_CONFIG_NO_POSIX_SIGNALS. The golden files
-# are read through node's preopened "/" (the host's file system).
+# are read through node's preopened "/" (the host's file system). WASI has
+# one thread and libc++ 14 for it no std::mutex: wasi-no-threads.h (force-
+# included) supplies do-nothing std::mutex and std::lock_guard.
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR wasm32)
 set(CMAKE_C_COMPILER clang)
@@ -15,7 +17,8 @@ set(CMAKE_SYSROOT /usr)
 set(CMAKE_AR llvm-ar-14)
 set(CMAKE_RANLIB llvm-ranlib-14)
 set(CMAKE_EXECUTABLE_SUFFIX ".wasm")
-string(APPEND CMAKE_CXX_FLAGS_INIT " -fno-exceptions -DCATCH_CONFIG_DISABLE_EXCEPTIONS -DCATCH_CONFIG_NO_POSIX_SIGNALS")
+string(APPEND CMAKE_CXX_FLAGS_INIT " -fno-exceptions -DCATCH_CONFIG_DISABLE_EXCEPTIONS -DCATCH_CONFIG_NO_POSIX_SIGNALS"
+  " -include ${CMAKE_CURRENT_LIST_DIR}/wasi-no-threads.h")
 set(CMAKE_CROSSCOMPILING_EMULATOR node --no-warnings ${CMAKE_CURRENT_LIST_DIR}/wasi-run.mjs)
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)

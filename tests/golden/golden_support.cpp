@@ -160,6 +160,7 @@ Chain run_chain(const Scene& scene, const ChainOptions& options) {
       out.error = std::string(scene.name) + ": tick " + std::to_string(tick) + ": " + err;
       break;
     }
+    if (options.observe) options.observe(ctx, tick);
     const uint64_t h = tick_hash(ctx.world, scratch);
     hashes.push_back(h);
     out.ticks = tick;

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -90,6 +91,8 @@ struct ChainOptions {
   /// same world, or every other time into a new world) and go on. 0: none.
   int32_t restore_count = 0;
   uint64_t restore_seed = 0;
+  /// Called after every tick's step (tests that check what a scene does).
+  std::function<void(SceneContext&, int32_t tick)> observe;
 };
 
 /// One recorded tick.

@@ -554,3 +554,38 @@ TEST_CASE("shapes enter the broad phase only inside the checked limits", "[physi
   CHECK(!create_segment_shape(b.value, default_shape_def(), degenerate).ok());
   CHECK(world_get_broad_phase_stats(w.id).proxies == 0);
 }
+
+TEST_CASE("the grid's dense and hashed layouts both match naive", "[physics][broad_phase]") {
+  // Crowded clusters far apart make the occupied cell range sparse (hashed
+  // buckets); one cluster alone is dense. Both must equal naive, step after
+  // step.
+  for (const int clusters : {1, 5}) {
+    INFO("clusters " << clusters);
+    ScopedWorld naive(world_def_with(BroadPhaseKind::naive, false));
+    ScopedWorld grid(world_def_with(BroadPhaseKind::grid, false));
+    for (ScopedWorld* w : {&naive, &grid}) {
+      std::mt19937_64 rng(77);
+      for (int c = 0; c < clusters; ++c) {
+        const Vec2 centre = {Q32::from_int(-2000 + 997 * c), Q32::from_int(1500 - 731 * c)};
+        for (int i = 0; i < 60; ++i) {
+          BodyDef bd = default_body_def();
+          bd.type = i % 7 == 0 ? BodyType::static_body : BodyType::dynamic_body;
+          bd.position = centre + Vec2{random_q32(rng, -4, 4), random_q32(rng, -4, 4)};
+          if (bd.type == BodyType::dynamic_body) bd.linear_velocity = {random_q32(rng, -2, 2), random_q32(rng, -2, 2)};
+          Result<BodyId> b = create_body(w->id, bd);
+          REQUIRE(b.ok());
+          const Q32 r = Q32::from_raw(static_cast<int64_t>(rng() % (uint64_t{1} << 31)) + (int64_t{1} << 30));
+          REQUIRE(create_circle_shape(b.value, default_shape_def(), Circle{{}, r}).ok());
+        }
+      }
+    }
+    for (int step = 0; step < 20; ++step) {
+      REQUIRE(world_step(naive.id, k_dt).ok());
+      REQUIRE(world_step(grid.id, k_dt).ok());
+      REQUIRE(pair_keys(grid.id) == pair_keys(naive.id));
+    }
+    CHECK(!pair_keys(naive.id).empty());
+    const bool hashed = find_world(grid.id)->broad_phase.grid.bucket_bits != 0;
+    CHECK(hashed == (clusters > 1));
+  }
+}

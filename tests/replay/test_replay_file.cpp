@@ -204,7 +204,10 @@ TEST_CASE("a corrupted byte anywhere is an error naming its chunk's offset", "[r
     if (std::find(types_seen.begin(), types_seen.end(), c.type) == types_seen.end()) types_seen.push_back(c.type);
   }
   CHECK(types_seen.size() == 4);  // HEAD, KEYF, TICK, END
+}
 
+TEST_CASE("wrong magic, unknown version and trailing data are refused", "[replay][file]") {
+  const std::vector<uint8_t> bytes = record_scene(RecordSpec{});
   SECTION("wrong magic") {
     std::vector<uint8_t> bad = bytes;
     bad[3] = 'X';

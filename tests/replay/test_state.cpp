@@ -8,7 +8,7 @@
 // restoring its own snapshot into itself before every step, one moving into
 // a fresh world made from the snapshot before every step) whose hash chains
 // must equal the original's to the end; plus single restores (original
-// state from tick t, then run to the end) at every 50th tick in both modes.
+// state from tick t, then run to the end) at every 100th tick in both modes.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -150,7 +150,7 @@ TEST_CASE("state: restore at every tick reproduces the hash chain to the end", "
       REQUIRE(destroy_world(current).ok());
     }
     // Single restores from the original's snapshots, to the end.
-    for (int64_t t0 = 0; t0 < k_ticks; t0 += 50) {
+    for (int64_t t0 = 0; t0 < k_ticks; t0 += 100) {
       const std::vector<uint8_t>& snap = original.snapshots[static_cast<size_t>(t0)];
       Result<WorldId> fresh = create_world_from_snapshot(snap.data(), snap.size());
       REQUIRE(fresh.ok());
@@ -167,6 +167,33 @@ TEST_CASE("state: restore at every tick reproduces the hash chain to the end", "
         REQUIRE(world_state_hash(f.id) == original.hashes[static_cast<size_t>(t) + 1]);
         REQUIRE(world_state_hash(same.id) == original.hashes[static_cast<size_t>(t) + 1]);
       }
+    }
+  }
+}
+
+TEST_CASE("state: restore into the same world is exact with every broad phase", "[replay][state]") {
+  // The broad phase keeps persistent structures (sorted end points, grid,
+  // tree) that restore resets; a stale one would change the pairs.
+  const Scene scene = Scene::create_destroy;
+  for (BroadPhaseKind kind : {BroadPhaseKind::naive, BroadPhaseKind::sweep_and_prune, BroadPhaseKind::grid,
+                              BroadPhaseKind::tree}) {
+    INFO("broad phase " << static_cast<int32_t>(kind));
+    OwnedWorld a(make_scene_world(scene));
+    OwnedWorld b(make_scene_world(scene));
+    REQUIRE(world_set_broad_phase(a.id, kind).ok());
+    REQUIRE(world_set_broad_phase(b.id, kind).ok());
+    std::vector<uint8_t> snap;
+    std::vector<uint8_t> older;
+    for (int64_t t = 0; t < 300; ++t) {
+      step_scene(scene, a.id, t);
+      // b: step, then jump back one tick and redo it (its structures saw a
+      // different state in between).
+      REQUIRE(encode_world_state(b.id, &older).ok());
+      step_scene(scene, b.id, t);
+      step_scene(scene, b.id, t + 1);
+      REQUIRE(world_restore(b.id, older.data(), older.size()).ok());
+      step_scene(scene, b.id, t);
+      REQUIRE(world_state_hash(b.id) == world_state_hash(a.id));
     }
   }
 }
@@ -264,7 +291,7 @@ TEST_CASE("state: corrupt, truncated and foreign images are refused and the worl
   // on refusal the world is unchanged (seeded; raw integers only).
   std::mt19937_64 rng(0x5EED5EEDu);
   int32_t refusals = 0;
-  for (int32_t i = 0; i < 300; ++i) {
+  for (int32_t i = 0; i < 150; ++i) {
     bad = good;
     const size_t at = static_cast<size_t>(rng() % good.size());
     bad[at] = static_cast<uint8_t>(bad[at] ^ static_cast<uint8_t>(1u + rng() % 255u));
@@ -290,6 +317,42 @@ TEST_CASE("state: corrupt, truncated and foreign images are refused and the worl
   CHECK(world_restore(WorldId{}, good.data(), good.size()).code == StatusCode::null_handle);
   Result<WorldId> none = create_world_from_snapshot(bad.data(), 3);
   CHECK(!none.ok());
+}
+
+struct LockedProbe {
+  WorldId world;
+  const std::vector<uint8_t>* image = nullptr;
+  StatusCode restore_code = StatusCode::ok;
+  StatusCode snapshot_code = StatusCode::ok;
+  uint64_t hash = 1;
+  int32_t calls = 0;
+};
+
+bool probe_filter(ShapeId, ShapeId, void* context) {
+  LockedProbe* p = static_cast<LockedProbe*>(context);
+  if (p->calls++ == 0) {
+    p->restore_code = world_restore(p->world, p->image->data(), p->image->size()).code;
+    std::vector<uint8_t> out;
+    p->snapshot_code = encode_world_state(p->world, &out).code;
+    p->hash = world_state_hash(p->world);
+  }
+  return true;
+}
+
+TEST_CASE("state: a locked world (inside world_step) is refused", "[replay][state]") {
+  OwnedWorld w(make_scene_world(Scene::pile));
+  std::vector<uint8_t> image;
+  REQUIRE(encode_world_state(w.id, &image).ok());
+  LockedProbe probe;
+  probe.world = w.id;
+  probe.image = &image;
+  REQUIRE(world_set_custom_filter(w.id, probe_filter, &probe).ok());
+  for (int64_t t = 0; t < 60 && probe.calls == 0; ++t) step_scene(Scene::pile, w.id, t);
+  REQUIRE(probe.calls > 0);
+  CHECK(probe.restore_code == StatusCode::world_locked);
+  CHECK(probe.snapshot_code == StatusCode::world_locked);
+  CHECK(probe.hash == 0);
+  REQUIRE(world_set_custom_filter(w.id, nullptr, nullptr).ok());
 }
 
 TEST_CASE("state: a one-raw-unit perturbation is pinpointed by hash chain and diff", "[replay][state]") {
@@ -360,6 +423,57 @@ TEST_CASE("state: diff reports records present on one side only", "[replay][stat
   CHECK(d.kind == "body_slot");
   CHECK(d.index == static_cast<int64_t>(extra.index1) - 1);
   CHECK(d.missing_in_a);
+}
+
+TEST_CASE("state: deltas against a base rebuild every image and refuse a wrong base or corruption",
+          "[replay][state]") {
+  const Scene scene = Scene::create_destroy;
+  const Run original = run_original(scene, true);
+  std::vector<uint8_t> delta;
+  std::vector<uint8_t> rebuilt;
+  size_t full_bytes = 0;
+  size_t delta_bytes = 0;
+  for (size_t t = 8; t < original.snapshots.size(); t += 3) {
+    const std::vector<uint8_t>& base = original.snapshots[t - 8];
+    const std::vector<uint8_t>& image = original.snapshots[t];
+    encode_state_delta(base.data(), base.size(), image.data(), image.size(), &delta);
+    const Status s = apply_state_delta(base.data(), base.size(), delta.data(), delta.size(), &rebuilt);
+    INFO("tick " << t << ": " << s.message);
+    REQUIRE(s.ok());
+    REQUIRE(rebuilt == image);
+    full_bytes += image.size();
+    delta_bytes += delta.size();
+  }
+  CHECK(delta_bytes < full_bytes);  // unchanged structure costs little
+  // Identical images: a header and a single run.
+  const std::vector<uint8_t>& b0 = original.snapshots[100];
+  encode_state_delta(b0.data(), b0.size(), b0.data(), b0.size(), &delta);
+  CHECK(delta.size() < 40);
+  REQUIRE(apply_state_delta(b0.data(), b0.size(), delta.data(), delta.size(), &rebuilt).ok());
+  CHECK(rebuilt == b0);
+  // Wrong base, wrong magic, truncation, trailing bytes.
+  const std::vector<uint8_t>& b1 = original.snapshots[101];
+  encode_state_delta(b0.data(), b0.size(), b1.data(), b1.size(), &delta);
+  Status s = apply_state_delta(b1.data(), b1.size(), delta.data(), delta.size(), &rebuilt);
+  CHECK(s.message.find("another base") != std::string::npos);
+  std::vector<uint8_t> bad = delta;
+  bad[1] = 'X';
+  CHECK(apply_state_delta(b0.data(), b0.size(), bad.data(), bad.size(), &rebuilt).message.find("magic") !=
+        std::string::npos);
+  for (size_t n = 0; n < delta.size(); n += 5) {
+    s = apply_state_delta(b0.data(), b0.size(), delta.data(), n, &rebuilt);
+    INFO(n << ": " << s.message);
+    CHECK(!s.ok());
+    CHECK(s.message.find("offset ") != std::string::npos);
+  }
+  bad = delta;
+  bad.push_back(0);
+  CHECK(!apply_state_delta(b0.data(), b0.size(), bad.data(), bad.size(), &rebuilt).ok());
+  // A huge claimed image size is refused before allocating.
+  bad = delta;
+  for (size_t k = 8; k < 16; ++k) bad[k] = 0xFF;
+  s = apply_state_delta(b0.data(), b0.size(), bad.data(), bad.size(), &rebuilt);
+  CHECK(s.message.find("image size") != std::string::npos);
 }
 
 TEST_CASE("state: byte layout is explicit little-endian (same bytes on every host)", "[replay][state]") {

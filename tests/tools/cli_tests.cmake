@@ -18,7 +18,7 @@ endfunction()
 
 # --- usage, help ------------------------------------------------------------------
 tandem_cli_test(no-command 2 "" ERR "A subcommand is required")
-tandem_cli_test(unknown-command 2 "frobnicate" ERR "frobnicate")
+tandem_cli_test(unknown-command 2 "frobnicate" ERR "unknown command .frobnicate.")
 tandem_cli_test(version 0 "version" OUT "^tandem [0-9]+\\.[0-9]+\\.[0-9]+")
 foreach(command run render demo)
   tandem_cli_test(${command}-help 0 "${command}|--help" OUT "Examples:\n  tandem ${command}")
@@ -66,6 +66,14 @@ tandem_cli_test(render-malformed 2 "render|${tandem_cli_data}/malformed.json|-o|
 
 # --- demo --------------------------------------------------------------------------------
 tandem_cli_test(demo 0 "demo|-o|${tandem_cli_out}/demo|--seconds|1"
-  OUT "final state hash.*0x[0-9a-f]+.*\\(identical\\).*picture: .*rain-final.png"
-  EXISTS "${tandem_cli_out}/demo/rain-final.png|${tandem_cli_out}/demo/rain-sheet.png")
+  OUT "final state hash.*0x[0-9a-f]+.*OK: every recorded hash matches.*picture: .*rain-final.png.*replay: .*rain.tandem-replay"
+  EXISTS "${tandem_cli_out}/demo/rain-final.png|${tandem_cli_out}/demo/rain-sheet.png|${tandem_cli_out}/demo/rain.tandem-replay")
 tandem_cli_test(demo-bad-scene 2 "demo|--scene|${tandem_cli_data}/unknown_key.json|-o|${tandem_cli_out}/bad" ERR "gravty")
+
+# render accepts a replay file too (the demo's recording): it plays the ticks.
+tandem_cli_test(render-replay 0 "render|${tandem_cli_out}/demo/rain.tandem-replay|--tick|30|-o|${tandem_cli_out}/from-replay"
+  EXISTS "${tandem_cli_out}/from-replay/rain-000030.png")
+tandem_cli_test(render-replay-too-far 2 "render|${tandem_cli_out}/demo/rain.tandem-replay|--tick|100000|-o|${tandem_cli_out}/bad"
+  ERR "the replay has 60 ticks")
+set_tests_properties("cli/demo" PROPERTIES FIXTURES_SETUP tandem_demo_replay)
+set_tests_properties("cli/render-replay" "cli/render-replay-too-far" PROPERTIES FIXTURES_REQUIRED tandem_demo_replay)

@@ -17,7 +17,7 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
                  "scenes: circles-N (N or Nk), pyramid-B, rain-N; default circles-1k..32k, pyramid-20, pyramid-100, "
                  "rain-4000");
   app.add_option("--runs", o->runs, "runs per scene and engine (median, min-max)")->check(CLI::Range(1, 1000));
-  app.add_option("--runs-large", o->runs_large, "runs for scenes of more than 8000 bodies (default: --runs)")
+  app.add_option("--runs-large", o->runs_large, "runs for scenes of more than 4000 bodies (default: --runs)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--steps", o->steps, "timed steps (default: the scene's: circles 300, pyramid 500, rain 600)")
       ->check(CLI::Range(1, 1000000));
@@ -26,6 +26,10 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
   app.add_option("--broadphase", o->broad_phases, "Tandem broad phases: naive, sap, grid, tree, all (default all)")
       ->delimiter(',');
   app.add_option("--naive-max", o->naive_max, "skip the naive broad phase above this many bodies (O(n^2))");
+  app.add_option("--max-run-seconds", o->max_run_seconds,
+                 "a run slower than this (timed steps, s) is not repeated, and its engine skips larger scenes of "
+                 "the family; 0: no limit")
+      ->check(CLI::Range(0, 1000000));
   app.add_flag("--peers,!--no-peers", o->peers, "also run Box2D 2.4 and Chipmunk2D (when linked in)");
   app.add_option("--csv", o->csv, "write the results as CSV to this file");
   app.add_option("--json", o->json, "write the results as JSON to this file");

@@ -7,7 +7,9 @@
 // before timing, so most are in contact and none asleep yet. Counters give
 // the snapshot size and bytes per dynamic body (static geometry included in
 // the full image: 3 bodies). Goals (issue 7): snapshot < 0.05 ms, rollback
-// of 8 ticks < 4 ms, ≤ 128 bytes per moving body.
+// of 8 ticks < 4 ms, ≤ 128 bytes per moving body. The compact form (a
+// delta against a base image 1 or 8 ticks older, state.h) is measured too.
+// The world uses the grid broad phase (same results as every kind).
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -42,7 +44,9 @@ void add_box(BodyId b, Q32 hw, Q32 hh) {
 
 /// The pile world (the caller destroys it).
 WorldId make_pile() {
-  WorldId w = create_world(default_world_def()).value;
+  WorldDef def = default_world_def();
+  def.broad_phase = BroadPhaseKind::grid;  // many similar shapes; results identical for every kind
+  WorldId w = create_world(def).value;
   const BodyId ground = add_body(w, BodyType::static_body, {0_q32, -1_q32});
   add_box(ground, 21_q32, 1_q32);
   const BodyId left = add_body(w, BodyType::static_body, {-20.5_q32, 20_q32});
@@ -137,11 +141,52 @@ void BM_Rollback8(benchmark::State& state) {
   destroy_world(w);
 }
 
+/// The compact form: a full image, then its delta against the image of
+/// `range(0)` ticks earlier (counters: delta bytes per body).
+void BM_DeltaSnapshot(benchmark::State& state) {
+  const WorldId w = make_pile();
+  std::vector<uint8_t> base;
+  encode_world_state(w, &base);
+  for (int64_t t = 0; t < state.range(0); ++t) world_step(w, k_dt);
+  std::vector<uint8_t> image(world_snapshot_size(w));
+  std::vector<uint8_t> delta;
+  size_t written = 0;
+  for (auto _ : state) {
+    world_snapshot(w, image.data(), image.size(), &written);
+    encode_state_delta(base.data(), base.size(), image.data(), written, &delta);
+    benchmark::DoNotOptimize(delta.data());
+  }
+  set_counters(state, delta.size());
+  state.counters["full_bytes_per_body"] = static_cast<double>(written) / k_bodies;
+  destroy_world(w);
+}
+
+/// Rebuilding the image from base + delta and restoring it.
+void BM_DeltaRestore(benchmark::State& state) {
+  const WorldId w = make_pile();
+  std::vector<uint8_t> base;
+  encode_world_state(w, &base);
+  for (int64_t t = 0; t < state.range(0); ++t) world_step(w, k_dt);
+  std::vector<uint8_t> image;
+  encode_world_state(w, &image);
+  std::vector<uint8_t> delta;
+  encode_state_delta(base.data(), base.size(), image.data(), image.size(), &delta);
+  std::vector<uint8_t> rebuilt;
+  for (auto _ : state) {
+    apply_state_delta(base.data(), base.size(), delta.data(), delta.size(), &rebuilt);
+    world_restore(w, rebuilt.data(), rebuilt.size());
+  }
+  set_counters(state, delta.size());
+  destroy_world(w);
+}
+
 BENCHMARK(BM_Snapshot)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Restore)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Hash)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Rollback8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DeltaSnapshot)->Arg(1)->Arg(8)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DeltaRestore)->Arg(8)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -16,7 +16,7 @@
 namespace tandem::bench {
 namespace {
 
-constexpr int32_t k_large_scene = 8000;
+constexpr int32_t k_large_scene = 4000;
 
 /// One scene × engine: the runs' times and the first run's probes.
 struct Row {
@@ -29,6 +29,7 @@ struct Row {
   Quality quality;
   std::string error;    ///< the engine refused the scene
   std::string skipped;  ///< not run, and why
+  std::string note;     ///< e.g. fewer runs than asked, and why
   std::map<std::string, double> ratio;  ///< peer engine → this median / peer median
 };
 
@@ -202,6 +203,7 @@ void print_table(const std::vector<Row>& rows, const Machine& m, const BenchOpti
     std::string notes;
     if (tracked) notes += std::string(pyramid_stands(r) ? "stands" : "FELL") + (at_rest(r) ? ", at rest; " : ", moving; ");
     if (r.quality.has_fingerprint) notes += "state " + hex64(r.quality.fingerprint).substr(0, 8);
+    if (!r.note.empty()) notes += "; " + r.note;
     std::printf(" %s\n", notes.c_str());
   }
   bool any_note = false;
@@ -249,7 +251,8 @@ bool write_csv(const std::string& path, const std::vector<Row>& rows) {
         << csv_field(!r.skipped.empty() ? "skipped: " + r.skipped : !r.error.empty() ? "error: " + r.error : "ok")
         << ',';
     for (size_t i = 0; i < r.ms.size(); ++i) out << (i ? " " : "") << fmt("%.6g", r.ms[i]);
-    out << ',' << csv_field(r.engine.note) << '\n';
+    out << ',' << csv_field(r.note.empty() ? r.engine.note : r.engine.note.empty() ? r.note : r.note + "; " + r.engine.note)
+        << '\n';
   }
   return static_cast<bool>(out);
 }
@@ -263,7 +266,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
       << ", \"date\": " << json_string(m.date) << ", \"load_average_before\": " << json_string(m.load_before)
       << ", \"load_average_after\": " << json_string(m.load_after) << "},\n";
   out << "  \"options\": {\"runs\": " << o.runs << ", \"runs_large\": " << (o.runs_large ? o.runs_large : o.runs)
-      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"naive_max\": " << o.naive_max
+      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"naive_max\": " << o.naive_max << ", \"max_run_seconds\": " << o.max_run_seconds
       << ", \"time_step\": \"1/60 s\"},\n";
   out << "  \"warnings\": [";
   for (size_t i = 0; i < warnings.size(); ++i) out << (i ? ", " : "") << json_string(warnings[i]);
@@ -304,6 +307,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
           << ", \"at_rest\": " << (at_rest(r) ? "true" : "false");
     }
     if (q.has_fingerprint) out << ", \"state_fingerprint\": " << json_string(hex64(q.fingerprint));
+    if (!r.note.empty()) out << ", \"run_note\": " << json_string(r.note);
     out << "}";
   }
   out << "\n  ]\n}\n";
@@ -444,12 +448,14 @@ int run_bench_suite(const BenchOptions& o) {
 
   std::vector<Row> rows;
   std::vector<std::string> warnings;
+  std::map<std::string, int32_t> too_slow;  // engine/family → the size whose run exceeded --max-run-seconds
   for (const SceneSpec& scene : scenes) {
     const size_t first_row = rows.size();
     const int32_t runs = scene.dynamic_count > k_large_scene && o.runs_large > 0 ? o.runs_large : o.runs;
     const int32_t warmup = o.warmup >= 0 ? o.warmup : scene.warmup_steps;
     const int32_t steps = o.steps > 0 ? o.steps : scene.timed_steps;
     for (const Engine& engine : engines) {
+      const std::string guard_key = engine.engine + "/" + engine.broad_phase + "/" + scene.family;
       Row row;
       row.scene = scene.name;
       row.family = scene.family;
@@ -460,6 +466,13 @@ int run_bench_suite(const BenchOptions& o) {
       row.steps = steps;
       if (engine.max_bodies > 0 && scene.dynamic_count > engine.max_bodies) {
         row.skipped = "O(n^2) above " + std::to_string(engine.max_bodies) + " bodies (--naive-max)";
+        rows.push_back(std::move(row));
+        continue;
+      }
+      const auto slow = too_slow.find(guard_key);
+      if (slow != too_slow.end() && scene.size > slow->second) {
+        row.skipped = "a run at " + scene.family + "-" + std::to_string(slow->second) + " took over " +
+                      std::to_string(o.max_run_seconds) + " s (--max-run-seconds)";
         rows.push_back(std::move(row));
         continue;
       }
@@ -474,6 +487,12 @@ int run_bench_suite(const BenchOptions& o) {
         if (!o.quiet) {
           std::fprintf(stderr, "  %-14s %-18s run %d/%d: %.3f ms/step\n", scene.name.c_str(), label(row).c_str(),
                        run + 1, runs, r.ms_per_step);
+        }
+        if (o.max_run_seconds > 0 && r.ms_per_step * steps > 1000.0 * o.max_run_seconds) {
+          // Too slow to repeat: keep this run, skip the rest and the larger scenes of this family.
+          too_slow[guard_key] = scene.size;
+          if (run + 1 < runs) row.note = "1 run only: it took over " + std::to_string(o.max_run_seconds) + " s";
+          break;
         }
       }
       if (!o.quiet && !row.error.empty()) {

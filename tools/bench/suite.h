@@ -23,12 +23,14 @@ namespace tandem::bench {
 struct BenchOptions {
   std::vector<std::string> scenes;        ///< scene names (scenes.h); empty: default_scene_names()
   int32_t runs = 5;                       ///< runs per scene and engine, ≥ 1
-  int32_t runs_large = 0;                 ///< runs for scenes of > 8000 dynamic bodies; 0: same as runs
+  int32_t runs_large = 0;                 ///< runs for scenes of > 4000 dynamic bodies; 0: same as runs
   int32_t steps = 0;                      ///< timed steps; 0: the scene's default
   int32_t warmup = -1;                    ///< warm-up steps; −1: the scene's default
   std::vector<std::string> broad_phases;  ///< Tandem broad phases (naive, sap, grid, tree, all); empty: all
   bool peers = false;                     ///< also run the peer engines (when linked in)
   int32_t naive_max = 4000;               ///< skip the naive broad phase above this many dynamic bodies
+  int32_t max_run_seconds = 60;           ///< a run whose timed steps take longer ends that row after
+                                          ///< it and skips the engine for larger scenes of the family; 0: off
   std::string csv, json, svg;             ///< output files; empty: not written
   bool quiet = false;                     ///< no progress lines on stderr
 };

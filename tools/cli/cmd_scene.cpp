@@ -17,7 +17,9 @@
 
 #include "cli.h"
 #include "render/render.h"
+#include "replay/replay_file.h"
 #include "replay/state.h"
+#include "replay/verify.h"
 #include "scene/scene.h"
 
 #ifndef TANDEM_SCENES_DIR
@@ -33,6 +35,20 @@ std::string hex64(uint64_t v) {
   char buf[24];
   std::snprintf(buf, sizeof buf, "0x%016" PRIx64, v);
   return buf;
+}
+
+// A hash of the bodies and shapes only (world_body_hashes folded in index
+// order), without the world's settings: equal for runs that differ only in
+// settings that must not change results, such as the broad phase.
+uint64_t bodies_hash(WorldId world) {
+  std::vector<uint64_t> hashes;
+  if (!world_body_hashes(world, &hashes).ok()) return 0;
+  uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (uint64_t v : hashes) {
+    h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ull;
+  }
+  return h;
 }
 
 const char* broad_phase_name(BroadPhaseKind k) {
@@ -62,6 +78,8 @@ std::string json_escape(const std::string& s) {
 struct Session {
   scene::Scene scene;
   scene::BuiltScene built;
+  bool from_replay = false;  // render only: the world comes from a replay file
+  Replay replay;             // from_replay: its ticks drive the world
   int64_t tick = 0;
   uint32_t step_flags = 0;  // OR of every step's flags
   std::vector<double> step_seconds;
@@ -92,6 +110,21 @@ int open_session(const std::string& command, const std::string& path, const std:
 
 // Applies the inputs of the current tick and steps once; prints errors itself.
 int step_once(const std::string& command, Session* s, bool timed) {
+  if (s->from_replay) {
+    if (s->tick >= static_cast<int64_t>(s->replay.tick_count())) {
+      std::fprintf(stderr, "tandem %s: %s: the replay ends at tick %" PRIu64 "\n", command.c_str(), s->scene.name.c_str(),
+                   s->replay.tick_count());
+      return 2;
+    }
+    const Status st = run_tick(s->built.world, s->replay.ticks[static_cast<size_t>(s->tick)], s->replay.header.time_step);
+    if (!st.ok()) {
+      std::fprintf(stderr, "tandem %s: %s: tick %" PRId64 ": %s\n", command.c_str(), s->scene.name.c_str(), s->tick + 1,
+                   st.message.c_str());
+      return 2;
+    }
+    ++s->tick;
+    return 0;
+  }
   const Status in = scene::apply_scene_inputs(s->built, s->scene, s->tick);
   if (!in.ok()) {
     std::fprintf(stderr, "tandem %s: %s\n", command.c_str(), in.message.c_str());
@@ -184,9 +217,11 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
                 counters.body_count, counters.shape_count);
     for (size_t i = 0; i < marks.size(); ++i)
       std::printf("%s{\"tick\": %" PRId64 ", \"hash\": \"%s\"}", i ? ", " : "", marks[i].tick, hex64(marks[i].hash).c_str());
-    std::printf("],\n \"final_tick\": %" PRId64 ", \"final_hash\": \"%s\", \"body_left_bounds\": %s,\n"
+    std::printf("],\n \"final_tick\": %" PRId64 ", \"final_hash\": \"%s\", \"bodies_hash\": \"%s\", "
+                "\"body_left_bounds\": %s,\n"
                 " \"step_ms\": {\"median\": %.6f, \"mean\": %.6f, \"max\": %.6f}, \"wall_s\": %.6f}\n",
-                ticks, hex64(final_hash).c_str(), left_bounds ? "true" : "false", median_ms, mean_ms, max_ms, wall);
+                ticks, hex64(final_hash).c_str(), hex64(bodies_hash(s.built.world)).c_str(), left_bounds ? "true" : "false",
+                median_ms, mean_ms, max_ms, wall);
     return 0;
   }
   if (!quiet) {
@@ -196,6 +231,8 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
     for (const Mark& m : marks) std::printf("tick %8" PRId64 "  hash %s\n", m.tick, hex64(m.hash).c_str());
     std::printf("step time: median %.3f ms, mean %.3f ms, max %.3f ms (%.2f s in all)\n", median_ms, mean_ms, max_ms, total);
     if (left_bounds) std::printf("note: a body left the world bounds and was disabled\n");
+    std::printf("bodies hash %s (bodies and shapes only: the same for every broad phase)\n",
+                hex64(bodies_hash(s.built.world)).c_str());
   }
   std::printf("final tick %" PRId64 "  hash %s\n", ticks, hex64(final_hash).c_str());
   return 0;
@@ -239,8 +276,32 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
   options.aabbs = a.aabbs;
   options.contacts = a.contacts;
   Session s;
-  if (int rc = open_session("render", a.scene, "", &s)) return rc;
+  std::vector<uint8_t> bytes;
+  if (read_file_bytes(a.scene, &bytes).ok() && is_replay_image(bytes)) {
+    // A replay file: start from its tick-0 keyframe and play its ticks.
+    s.from_replay = true;
+    s.scene.name = a.scene;
+    if (Status st = read_replay(bytes, &s.replay); !st.ok())
+      return std::fprintf(stderr, "tandem render: %s: %s\n", a.scene.c_str(), st.message.c_str()), 2;
+    Result<WorldId> w = s.replay.create_world_at(0);
+    if (!w.ok()) return std::fprintf(stderr, "tandem render: %s: %s\n", a.scene.c_str(), w.status.message.c_str()), 2;
+    s.built.world = w.value;
+    s.scene.ticks = static_cast<int64_t>(s.replay.tick_count());
+    if (s.replay.header.has_scene_bytes) {  // the embedded scene's view, if it parses
+      const std::vector<uint8_t>& text = s.replay.header.scene_bytes;
+      Result<scene::Scene> embedded =
+          scene::load_scene_text(std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), a.scene);
+      if (embedded.ok()) s.scene.has_view = embedded.value.has_view, s.scene.view = embedded.value.view;
+    }
+  } else if (int rc = open_session("render", a.scene, "", &s)) {
+    return rc;
+  }
   const int64_t ticks = a.ticks >= 0 ? a.ticks : (a.tick >= 0 ? a.tick : s.scene.ticks);
+  if (s.from_replay && ticks > s.scene.ticks) {
+    std::fprintf(stderr, "tandem render: %s: the replay has %" PRId64 " ticks; asked for %" PRId64 "\n", a.scene.c_str(),
+                 s.scene.ticks, ticks);
+    return 2;
+  }
   if (a.tick > ticks) {
     std::fprintf(stderr, "tandem render: --tick %" PRId64 " is after the last tick %" PRId64 "\n", a.tick, ticks);
     return 2;
@@ -312,7 +373,7 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
 // --- demo ------------------------------------------------------------------------
 struct DemoArgs {
   std::string scene;
-  std::string out_dir = "tandem-demo";
+  std::string out_dir = "tandem-demo";  // scripts/demo.sh passes build/demo
   double seconds = 5;
 };
 
@@ -344,6 +405,21 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
   render::RenderOptions options;
   render::ContactSheet sheet(4, 400, 300);
   const int64_t frame_every = std::max<int64_t>(1, ticks / 7);
+  const std::string stem = stem_of(path);
+
+  // 1. Run the scene while recording a replay of it (scene text embedded).
+  const std::string replay_path = (std::filesystem::path(a.out_dir) / (stem + ".tandem-replay")).string();
+  std::vector<uint8_t> scene_bytes;
+  if (Status st = read_file_bytes(path, &scene_bytes); !st.ok())
+    return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
+  RecorderOptions recorder_options;
+  recorder_options.time_step = s.scene.time_step;
+  recorder_options.keyframe_interval = 60;
+  ReplayRecorder recorder;
+  if (Status st = recorder.open_file(replay_path, recorder_options); !st.ok())
+    return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
+  if (Status st = recorder.begin(s.built.world, scene_bytes); !st.ok())
+    return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
   const auto wall0 = Clock::now();
   Progress progress(g.quiet);
   while (true) {
@@ -352,36 +428,55 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
       sheet.add(s.built.world, view, options);
     }
     if (s.tick >= ticks) break;
-    if (int rc = step_once("demo", &s, true)) return rc;
+    for (const tandem::Command& c : scene::scene_inputs_at(s.built, s.scene, s.tick))
+      if (Status st = recorder.submit(c); !st.ok())
+        return std::fprintf(stderr, "tandem demo: tick %" PRId64 ": %s\n", s.tick, st.message.c_str()), 2;
+    const auto t0 = Clock::now();
+    const StepResult r = recorder.step();
+    s.step_seconds.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    if (!r.ok()) return std::fprintf(stderr, "tandem demo: step %" PRId64 ": %s\n", s.tick + 1, r.status.message.c_str()), 2;
+    ++s.tick;
     progress.update(s.tick, ticks);
   }
   progress.finish();
+  if (Status st = recorder.finish(); !st.ok()) return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
   const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
   std::vector<double> sorted = s.step_seconds;
   std::sort(sorted.begin(), sorted.end());
   const uint64_t hash = world_state_hash(s.built.world);
-  const std::string stem = stem_of(path);
+  std::printf("  simulated %" PRId64 " ticks (%.1f s at %d Hz) in %.2f s (median step %.3f ms), recording every input\n"
+              "  and the state hash after every tick\n",
+              ticks, static_cast<double>(ticks) / s.scene.step_hz, s.scene.step_hz, wall,
+              sorted.empty() ? 0.0 : sorted[sorted.size() / 2] * 1e3);
+  std::printf("  final state hash (XXH3-64 of the canonical state): %s\n", hex64(hash).c_str());
+
+  // 2. Verify: read the replay back and re-simulate it from its keyframes.
+  Replay replay;
+  if (Status st = read_replay_file(replay_path, &replay); !st.ok())
+    return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
+  const VerifyReport report = verify_replay(replay);
+  const int verify_rc = verify_exit_code(report);
+  std::printf("  replay read back and re-simulated (tandem verify):%s\n", verify_rc == 0 ? "" : " FAILED");
+  const std::string text = format_verify_report(report);
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    std::printf("    %s\n", text.substr(start, end - start).c_str());
+    start = end + 1;
+  }
+
+  // 3. Draw the final state and the contact sheet.
   const std::string picture = (std::filesystem::path(a.out_dir) / (stem + "-final.png")).string();
   const std::string sheet_path = (std::filesystem::path(a.out_dir) / (stem + "-sheet.png")).string();
   options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hex64(hash);
   options.width = 1000, options.height = 750;
   for (const std::string& err : {render::render_png(s.built.world, view, options, picture), sheet.write_png(sheet_path)})
     if (!err.empty()) return std::fprintf(stderr, "tandem demo: %s\n", err.c_str()), 2;
-  std::printf("  simulated %" PRId64 " ticks (%.1f s at %d Hz) in %.2f s; median step %.3f ms\n", ticks,
-              static_cast<double>(ticks) / s.scene.step_hz, s.scene.step_hz, wall,
-              sorted.empty() ? 0.0 : sorted[sorted.size() / 2] * 1e3);
-  std::printf("  final state hash (XXH3-64 of the canonical state): %s\n", hex64(hash).c_str());
-  // Determinism check: the same scene built and run again gives the same hash.
-  Session again;
-  if (int rc = open_session("demo", path, "", &again)) return rc;
-  while (again.tick < ticks)
-    if (int rc = step_once("demo", &again, false)) return rc;
-  const uint64_t hash2 = world_state_hash(again.built.world);
-  std::printf("  re-run from the scene file: %s  %s\n", hex64(hash2).c_str(), hash2 == hash ? "(identical)" : "MISMATCH");
-  std::printf("  picture: %s\n  contact sheet: %s\n", picture.c_str(), sheet_path.c_str());
-  std::printf("Try: tandem run %s --ticks 600   tandem render %s --every 60 -o %s --sheet\n", path.c_str(), path.c_str(),
-              a.out_dir.c_str());
-  return hash2 == hash ? 0 : 1;
+  std::printf("  picture:       %s\n  contact sheet: %s\n  replay:        %s\n", picture.c_str(), sheet_path.c_str(),
+              replay_path.c_str());
+  std::printf("Next: tandem run %s --ticks 600\n      tandem render %s --every 60 -o %s --sheet\n"
+              "      tandem verify %s\n",
+              path.c_str(), path.c_str(), a.out_dir.c_str(), replay_path.c_str());
+  return verify_rc;
 }
 
 }  // namespace
@@ -407,7 +502,7 @@ void register_scene_commands(CLI::App& app, const GlobalOptions& options, std::v
 
   auto* render = app.add_subcommand("render", "Draw a scene at some ticks to PNG or SVG (Cairo)");
   auto render_args = std::make_shared<RenderArgs>();
-  render->add_option("scene", render_args->scene, "scene file (JSON)")->required();
+  render->add_option("scene", render_args->scene, "scene file (JSON) or replay file (tandem record)")->required();
   auto* tick = render->add_option("--tick,-t", render_args->tick, "draw this tick only (default: the last)")
                    ->check(CLI::Range(int64_t{0}, int64_t{1} << 40));
   render->add_option("--every", render_args->every, "draw every K ticks, from tick 0")
@@ -428,13 +523,15 @@ void register_scene_commands(CLI::App& app, const GlobalOptions& options, std::v
       "Files are named DIR/SCENE-TICK.png (six-digit tick).\nExamples:\n"
       "  tandem render scenes/pyramid.json --tick 120 -o out\n"
       "  tandem render scenes/rain.json --every 60 --ticks 600 -o out --sheet --contacts\n"
-      "  tandem render scenes/tumbler.json -o out --format svg --size 1200x900\n");
+      "  tandem render scenes/tumbler.json -o out --format svg --size 1200x900\n"
+      "  tandem render build/demo/rain.tandem-replay --tick 200 -o out   (a replay: seeks to the tick)\n");
   commands->push_back({render, [render_args, &options] { return run_render(*render_args, options); }});
 
-  auto* demo = app.add_subcommand("demo", "Run a bundled scene, check it reruns to the same hash, draw it");
+  auto* demo = app.add_subcommand("demo", "Run a bundled scene, record a replay, verify it, draw the result");
   auto demo_args = std::make_shared<DemoArgs>();
   demo->add_option("--scene", demo_args->scene, "scene file (default: the bundled scenes/rain.json)");
-  demo->add_option("-o,--out", demo_args->out_dir, "output directory (default: tandem-demo)");
+  demo->add_option("-o,--out", demo_args->out_dir, "output directory (default: tandem-demo; the last one given wins)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   demo->add_option("--seconds", demo_args->seconds, "simulated seconds (default 5)");
   demo->footer("Examples:\n  tandem demo\n  tandem demo --scene scenes/pyramid.json -o /tmp/demo --seconds 10\n");
   commands->push_back({demo, [demo_args, &options] { return run_demo(*demo_args, options); }});

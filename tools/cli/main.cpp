@@ -326,6 +326,14 @@ int main(int argc, char** argv) {
   tandem::cli::register_replay_commands(app, options, &commands);
   tandem::cli::register_bench_commands(app, options, &commands);
 
+  if (argc > 1 && argv[1][0] != '-') {  // CLI11 alone would only say "A subcommand is required"
+    const std::string name = argv[1];
+    const auto known = app.get_subcommands([&](CLI::App* sub) { return sub->get_name() == name; });
+    if (known.empty()) {
+      std::fprintf(stderr, "tandem: unknown command '%s'; run tandem --help for the list\n", name.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

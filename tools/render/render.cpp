@@ -10,6 +10,18 @@
 
 #include "physics/world.h"
 
+// Fontconfig (under Cairo's text) keeps its configuration cache until exit
+// on purpose; LeakSanitizer would report it in sanitizer builds.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TANDEM_RENDER_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(TANDEM_RENDER_ASAN)
+extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
+extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
+#endif
+
 namespace tandem::render {
 namespace {
 
