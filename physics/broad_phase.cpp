@@ -81,6 +81,8 @@ void gather_proxies(World* world) {
   if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
   if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
   if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
+  // Slots beyond the pool (a restore may leave fewer) take no part.
+  for (size_t s = cap; s < bp.shape_kind.size(); ++s) bp.shape_kind[s] = k_proxy_none;
   for (int32_t s = 0; s < capacity; ++s) {
     const size_t si = static_cast<size_t>(s);
     bp.shape_kind[si] = k_proxy_none;

@@ -85,7 +85,7 @@ void sap_update(World* world) {
     SapEndpoint e = sap.endpoints[r];
     const size_t s = static_cast<size_t>(e.tag & ~k_max_flag);
     if (s >= cap || bp.shape_kind[s] == k_proxy_none) {
-      if (s < cap) sap.present[s] = 0;
+      if (s < sap.present.size()) sap.present[s] = 0;
       continue;
     }
     const AABB& box = bp.shape_fat[s];

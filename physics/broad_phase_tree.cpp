@@ -261,11 +261,13 @@ void tree_update(World* world) {
   const int32_t cap = id_pool_capacity(world->shape_pool);
   if (t.leaf_of_shape.size() < static_cast<size_t>(cap)) t.leaf_of_shape.resize(static_cast<size_t>(cap), -1);
 
-  // Synchronise with the shapes, ascending shape index.
-  for (int32_t s = 0; s < cap; ++s) {
+  // Synchronise with the shapes, ascending shape index (slots beyond the
+  // pool, which a restore may leave, lose their leaves).
+  const int32_t slots = static_cast<int32_t>(t.leaf_of_shape.size());
+  for (int32_t s = 0; s < slots; ++s) {
     const size_t si = static_cast<size_t>(s);
     int32_t leaf = t.leaf_of_shape[si];
-    const bool takes_part = bp.shape_kind[si] != k_proxy_none;
+    const bool takes_part = s < cap && bp.shape_kind[si] != k_proxy_none;
     if (leaf != -1) {
       if (takes_part && !needs_reinsert(node(&t, leaf).box, bp.shape_fat[si])) continue;
       remove_leaf(&t, leaf);

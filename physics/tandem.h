@@ -257,10 +257,11 @@ BroadPhaseKind world_get_broad_phase(WorldId world);
 BroadPhaseStats world_get_broad_phase_stats(WorldId world);
 
 /// A user collision filter: return false to keep shapes a and b (a's index
-/// below b's) from forming a contact. Called by the broad phase for pairs
-/// that passed the category/mask/group test, at most once per pair per step.
-/// It MUST be deterministic — a pure function of its arguments and of data
-/// that every peer holds identically — and must not call into the world.
+/// below b's) from forming a contact. Called inside world_step() — by the
+/// broad phase and by continuous collision — for pairs that passed the
+/// category/mask/group test. It MUST be deterministic — a pure function of
+/// its arguments and of data that every peer holds identically — and must not
+/// change the world (changes are refused while the step runs).
 using CustomFilterFn = bool (*)(ShapeId a, ShapeId b, void* context);
 /// Installs a custom filter (null removes it); `context` is passed back
 /// unchanged. Refused inside world_step().

@@ -114,11 +114,14 @@ void append_prelude(std::vector<uint8_t>* out) {
 // --- running ------------------------------------------------------------------
 
 Status run_tick(WorldId world, const TickRecord& record, Q32 time_step, const PayloadHandler& payloads,
-                uint32_t* out_refused) {
+                uint32_t* out_refused, uint32_t* out_skipped) {
   std::vector<Command> derived;
   for (const Command& c : record.commands) {
     if (c.type == CommandType::user_input) {
-      if (!payloads) continue;
+      if (!payloads) {
+        if (out_skipped != nullptr) ++*out_skipped;
+        continue;
+      }
       derived.clear();
       Status s = payloads(record.tick, c.payload, &derived);
       if (!s.ok()) {

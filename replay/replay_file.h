@@ -136,10 +136,11 @@ using PayloadHandler =
 /// Applies one tick's commands (user_input ones through `payloads` when set,
 /// skipped otherwise) and steps the world by `time_step`. A refused command
 /// does not stop the tick (it was refused the same way when recorded); the
-/// count of refused commands is added to *out_refused when given. Returns a
+/// count of refused commands is added to *out_refused when given, and the
+/// count of payloads skipped for want of a handler to *out_skipped. Returns a
 /// non-ok status only when the payload handler fails or the step is refused.
 Status run_tick(WorldId world, const TickRecord& record, Q32 time_step, const PayloadHandler& payloads = {},
-                uint32_t* out_refused = nullptr);
+                uint32_t* out_refused = nullptr, uint32_t* out_skipped = nullptr);
 
 /// A whole replay in memory.
 struct Replay {

@@ -121,7 +121,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   uint64_t hash_after_mismatch = 0;
   for (uint64_t t = 1; t <= n; ++t) {
     const TickRecord& rec = replay.ticks[t - 1];
-    Status s = run_tick(world.id, rec, dt, options.payloads, &rep.refused_commands);
+    Status s = run_tick(world.id, rec, dt, options.payloads, &rep.refused_commands, &rep.skipped_payloads);
     if (!s.ok()) {
       rep.error = fail("verify: " + s.message);
       return rep;
@@ -226,6 +226,9 @@ std::string format_verify_report(const VerifyReport& r) {
        std::to_string(r.hashes_checked) + ", keyframes checked: " + std::to_string(r.keyframes_checked) + "\n";
   if (r.refused_commands != 0)
     s += "commands refused (as when recorded): " + std::to_string(r.refused_commands) + "\n";
+  if (r.skipped_payloads != 0)
+    s += "user input payloads skipped (no handler to turn them into commands): " +
+         std::to_string(r.skipped_payloads) + "\n";
   if (!r.mismatch) {
     s += "OK: every recorded hash matches\n";
     return s;

@@ -60,6 +60,7 @@ struct VerifyReport {
   uint64_t hashes_checked = 0;   ///< recorded tick hashes compared (until the first mismatch)
   uint64_t keyframes_checked = 0;
   uint32_t refused_commands = 0; ///< commands refused while re-running (also refused when recorded)
+  uint32_t skipped_payloads = 0; ///< user payloads skipped (no VerifyOptions::payloads handler)
   bool mismatch = false;
   uint64_t mismatch_tick = 0;    ///< first tick whose recomputed state differs from the recording
   uint64_t expected_hash = 0;    ///< recorded hash at mismatch_tick (or the keyframe's)

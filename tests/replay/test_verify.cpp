@@ -70,6 +70,9 @@ TEST_CASE("user payloads go through the callback", "[replay][verify]") {
   const VerifyReport skipped = verify_replay(r);
   CHECK(skipped.mismatch);
   CHECK(skipped.mismatch_tick == 2);
+  CHECK(skipped.skipped_payloads == 1);
+  CHECK(contains(format_verify_report(skipped), "user input payloads skipped (no handler to turn them into commands): 1"));
+  CHECK(ok.skipped_payloads == 0);
   // A callback that fails stops the run with an error (exit code 2).
   VerifyOptions failing;
   failing.payloads = [](uint64_t, std::span<const uint8_t>, std::vector<Command>*) {

@@ -225,9 +225,9 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
   if (!created.ok()) return fail("replay", a.file + ": initial keyframe: " + created.status.message);
   OwnedWorld world{created.value};
   ProgressBar progress("replay", quiet || json);
-  uint32_t refused = 0;
+  uint32_t refused = 0, skipped = 0;
   for (uint64_t t = 1; t <= ticks; ++t) {
-    const Status s = run_tick(world.id, replay.ticks[t - 1], replay.header.time_step, {}, &refused);
+    const Status s = run_tick(world.id, replay.ticks[t - 1], replay.header.time_step, {}, &refused, &skipped);
     if (!s.ok()) return fail("replay", a.file + ": " + s.message);
     progress.update(t, ticks);
   }
@@ -252,6 +252,7 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
     j["final_hash"] = hex64(hash);
     if (has_recorded) j["recorded_hash"] = hex64(recorded);
     j["refused_commands"] = refused;
+    j["skipped_payloads"] = skipped;
     std::printf("%s\n", j.dump().c_str());
     return 0;
   }
@@ -262,6 +263,7 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
       std::printf("recorded hash at tick %" PRIu64 ": %s (%s)\n", ticks, hex64(recorded).c_str(),
                   recorded == hash ? "matches" : "DIFFERS: run tandem verify");
     if (refused != 0) std::printf("commands refused (as when recorded): %u\n", refused);
+    if (skipped != 0) std::printf("user input payloads skipped (the game's meaning is unknown here): %u\n", skipped);
     if (!a.save_state.empty()) std::printf("state written to %s\n", a.save_state.c_str());
   }
   std::printf("final tick %" PRIu64 "  hash %s\n", ticks, hex64(hash).c_str());
@@ -295,6 +297,7 @@ int run_verify(const VerifyArgs& a, const GlobalOptions& g) {
     j["hashes_checked"] = rep.hashes_checked;
     j["keyframes_checked"] = rep.keyframes_checked;
     j["refused_commands"] = rep.refused_commands;
+    j["skipped_payloads"] = rep.skipped_payloads;
     if (rep.mismatch) {
       j["mismatch_tick"] = rep.mismatch_tick;
       j["expected_hash"] = hex64(rep.expected_hash);

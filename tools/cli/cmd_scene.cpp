@@ -382,6 +382,9 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
   if (path.empty()) {
     path = std::string(TANDEM_SCENES_DIR) + "/rain.json";
     if (!std::filesystem::exists(path)) path = "scenes/rain.json";
+    std::error_code ec;  // show it relative to the current directory when it lies below it
+    const std::string relative = std::filesystem::proximate(path, ec).string();
+    if (!ec && relative.rfind("..", 0) != 0) path = relative;
   }
   Session s;
   if (int rc = open_session("demo", path, "", &s)) return rc;
@@ -469,7 +472,15 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
   const std::string sheet_path = (std::filesystem::path(a.out_dir) / (stem + "-sheet.png")).string();
   options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hex64(hash);
   options.width = 1000, options.height = 750;
-  for (const std::string& err : {render::render_png(s.built.world, view, options, picture), sheet.write_png(sheet_path)})
+  // Framed on where the bodies ended up, within the scene's view.
+  render::View final_view = render::fit_view(s.built.world);
+  if (s.scene.has_view) {
+    final_view.min_x = std::max(final_view.min_x, view.min_x), final_view.max_x = std::min(final_view.max_x, view.max_x);
+    final_view.min_y = std::max(final_view.min_y, view.min_y), final_view.max_y = std::min(final_view.max_y, view.max_y);
+    if (final_view.min_x >= final_view.max_x || final_view.min_y >= final_view.max_y) final_view = view;
+  }
+  for (const std::string& err :
+       {render::render_png(s.built.world, final_view, options, picture), sheet.write_png(sheet_path)})
     if (!err.empty()) return std::fprintf(stderr, "tandem demo: %s\n", err.c_str()), 2;
   std::printf("  picture:       %s\n  contact sheet: %s\n  replay:        %s\n", picture.c_str(), sheet_path.c_str(),
               replay_path.c_str());
