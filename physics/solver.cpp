@@ -138,10 +138,18 @@ void stage_integrate_velocities(World* world, StepContext* context) {
   for (int32_t i = 0; i < count; ++i) {
     BodyState& s = states[i];
     const SolverBodyParams& p = params[i];
-    const Vec2 v{s.linear_velocity.x * p.linear_damping_factor + p.delta_linear_velocity.x,
-                 s.linear_velocity.y * p.linear_damping_factor + p.delta_linear_velocity.y};
-    const Q32 w = s.angular_velocity * p.angular_damping_factor + p.delta_angular_velocity;
-    s.linear_velocity = clamp_linear_speed(v, max_v);
+    // Without damping the factor is exactly 1 and x·1 = x exactly, so
+    // skipping the product changes no bit.
+    Vec2 v = s.linear_velocity;
+    if (p.linear_damping_factor != Q32::one()) v = {v.x * p.linear_damping_factor, v.y * p.linear_damping_factor};
+    v = v + p.delta_linear_velocity;
+    Q32 w = s.angular_velocity;
+    if (p.angular_damping_factor != Q32::one()) w = w * p.angular_damping_factor;
+    w = w + p.delta_angular_velocity;
+    // |v| ≤ |v.x| + |v.y|: the 128-bit length test only where that bound
+    // exceeds the limit.
+    if (abs(v.x) + abs(v.y) > max_v) v = clamp_linear_speed(v, max_v);
+    s.linear_velocity = v;
     s.angular_velocity = clamp(w, -max_w, max_w);
   }
 }
