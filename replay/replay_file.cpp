@@ -11,6 +11,7 @@
 
 #include "replay/replay_file.h"
 
+#include <cerrno>
 #include <cinttypes>
 #include <cstring>
 #include <utility>
@@ -103,10 +104,22 @@ void append_chunk(std::vector<uint8_t>* out, uint32_t type, const std::vector<ui
   w.u64(xxh64(payload));
 }
 
-void append_prelude(std::vector<uint8_t>* out) {
-  ByteWriter w(out);
+// The END payload. Written through a fixed buffer: appending 8 bytes to an
+// empty vector makes g++ 12 at -O3 on i686 report a false -Wstringop-overflow.
+std::vector<uint8_t> end_payload(uint64_t tick_count) {
+  uint8_t buf[8];
+  ByteWriter w(buf, sizeof buf);
+  w.u64(tick_count);
+  return std::vector<uint8_t>(buf, buf + sizeof buf);
+}
+
+// The 12 prelude bytes (through a fixed buffer, as end_payload).
+std::vector<uint8_t> prelude_bytes() {
+  uint8_t buf[k_replay_prelude_bytes];
+  ByteWriter w(buf, sizeof buf);
   w.bytes(k_replay_magic, sizeof k_replay_magic);
   w.u32(k_replay_format_version);
+  return std::vector<uint8_t>(buf, buf + sizeof buf);
 }
 
 }  // namespace
@@ -163,7 +176,7 @@ Status Replay::seek(WorldId world, uint64_t tick, const PayloadHandler& payloads
     return s;
   }
   for (uint64_t t = k.tick + 1; t <= tick; ++t) {
-    s = run_tick(world, ticks[t - 1], header.time_step, payloads);
+    s = run_tick(world, tick_record(t), header.time_step, payloads);
     if (!s.ok()) return s;
   }
   return Status{};
@@ -433,8 +446,7 @@ Status read_replay_file(const std::string& path, Replay* out, ReplayReadInfo* in
 
 std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chunk) {
   if (ticks_per_chunk == 0) ticks_per_chunk = 1;
-  std::vector<uint8_t> out;
-  append_prelude(&out);
+  std::vector<uint8_t> out = prelude_bytes();
   std::vector<uint8_t> payload;
   {
     ByteWriter w(&payload);
@@ -459,7 +471,7 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
     // A chunk never spans a keyframe.
     for (size_t k = next_key; k < replay.keyframes.size(); ++k)
       if (replay.keyframes[k].tick > t && replay.keyframes[k].tick < end) {
-        end = replay.keyframes[k].tick;
+        end = static_cast<size_t>(replay.keyframes[k].tick);
         break;
       }
     payload.clear();
@@ -469,10 +481,7 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
     t = end;
     keyframes_up_to(t);
   }
-  payload.clear();
-  ByteWriter w(&payload);
-  w.u64(replay.ticks.size());
-  append_chunk(&out, k_chunk_end, payload);
+  append_chunk(&out, k_chunk_end, end_payload(replay.ticks.size()));
   return out;
 }
 
@@ -521,9 +530,7 @@ Status ReplayWriter::write_chunk(uint32_t type, const std::vector<uint8_t>& payl
 Status ReplayWriter::write_header(const ReplayHeader& header, std::span<const uint8_t> initial_state) {
   if (header_written_) return error("replay writer: the header is already written");
   if (!memory_mode_ && file_ == nullptr) return error("replay writer: not open");
-  std::vector<uint8_t> bytes;
-  append_prelude(&bytes);
-  Status s = emit(bytes);
+  Status s = emit(prelude_bytes());
   if (!s.ok()) return s;
   std::vector<uint8_t> payload;
   ReplayHeader h = header;
@@ -591,10 +598,7 @@ Status ReplayWriter::finish() {
   if (!header_written_) return error("replay writer: finish before write_header");
   Status s = flush();
   if (!s.ok()) return s;
-  std::vector<uint8_t> payload;
-  ByteWriter w(&payload);
-  w.u64(ticks_);
-  s = write_chunk(k_chunk_end, payload);
+  s = write_chunk(k_chunk_end, end_payload(ticks_));
   if (!s.ok()) return s;
   finished_ = true;
   if (file_ != nullptr) {

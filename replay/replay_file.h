@@ -32,9 +32,10 @@
 //   u8  scene flags: bit 0 = scene bytes present, bit 1 = scene hash present
 //   u64 scene hash (0 when absent; by default XXH3-64 of the scene bytes)
 //   u32 scene byte count S, then S bytes (opaque: e.g. the scene's JSON text)
-// KEYF payload: u64 tick, u64 state hash (XXH3-64 of the state image, equal
-//   to world_state_hash), u32 image byte count N, N bytes of state image
-//   (replay/state.h). A keyframe's tick equals the number of ticks before it.
+// KEYF payload: u64 tick, u64 image hash (XXH3-64 of the N image bytes: an
+//   integrity check, not world_state_hash, which ignores the broad-phase
+//   kind), u32 image byte count N, N bytes of state image (replay/state.h).
+//   A keyframe's tick equals the number of ticks before it.
 // TICK payload: u32 record count, then per record: u64 tick (consecutive from
 //   1), u8 flags (bit 0: hash present), commands (u32 count + each command,
 //   replay/commands.h; user input payloads are user_input commands, in the
@@ -124,7 +125,7 @@ struct TickRecord {
 /// A world snapshot after `tick` ticks.
 struct Keyframe {
   uint64_t tick = 0;
-  uint64_t hash = 0;           ///< XXH3-64 of `state` (= world_state_hash)
+  uint64_t hash = 0;           ///< XXH3-64 of the bytes of `state` (not world_state_hash)
   std::vector<uint8_t> state;  ///< state image (replay/state.h)
 };
 
@@ -150,6 +151,8 @@ struct Replay {
 
   /// Number of ticks recorded.
   uint64_t tick_count() const { return ticks.size(); }
+  /// The record of `tick` (1 ≤ tick ≤ tick_count(); not checked).
+  const TickRecord& tick_record(uint64_t tick) const { return ticks[static_cast<size_t>(tick - 1)]; }
   /// The last keyframe with tick ≤ `tick` (keyframes[0] if none is; an empty
   /// keyframe with no state when there are no keyframes).
   const Keyframe& keyframe_at_or_before(uint64_t tick) const;

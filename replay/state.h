@@ -104,6 +104,8 @@ Result<WorldId> create_world_from_snapshot(const uint8_t* data, size_t size);
 
 /// XXH3-64 of the world's canonical encoding; 0 for an invalid or locked
 /// world. Allocation-free once the calling thread's scratch buffer has grown.
+/// The broad-phase kind is hashed as naive (it changes no result), so the
+/// hash of a tick is the same whichever broad phase computed it.
 uint64_t world_state_hash(WorldId world);
 
 /// XXH3-64 of one body's record followed by its shapes' records (ascending

@@ -61,11 +61,19 @@ std::optional<std::vector<uint8_t>> trusted_state_at(const Replay& r, uint64_t t
   Result<WorldId> w = r.create_world_at(tick, payloads);
   if (!w.ok()) return std::nullopt;
   OwnedWorld world(w.value);
-  if (tick > 0 && r.ticks[tick - 1].has_hash && world_state_hash(world.id) != r.ticks[tick - 1].hash)
+  if (tick > 0 && r.tick_record(tick).has_hash && world_state_hash(world.id) != r.tick_record(tick).hash)
     return std::nullopt;
   std::vector<uint8_t> state;
   if (!encode_world_state(world.id, &state).ok()) return std::nullopt;
   return state;
+}
+
+// world_state_hash of the world an image restores to (0 if it does not).
+uint64_t image_state_hash(const std::vector<uint8_t>& image) {
+  Result<WorldId> w = create_world_from_snapshot(image.data(), image.size());
+  if (!w.ok()) return 0;
+  OwnedWorld world(w.value);
+  return world_state_hash(world.id);
 }
 
 void report_progress(const ProgressCallback& progress, uint64_t done, uint64_t total) {
@@ -97,17 +105,20 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   OwnedWorld world(created.value);
   const Q32 dt = replay.header.time_step;
 
-  // The restored initial state must hash as recorded.
+  // The restored initial state must encode to the recorded image.
   {
-    const uint64_t h = world_state_hash(world.id);
-    if (h != k0.hash) {
+    std::vector<uint8_t> now;
+    Status s = encode_world_state(world.id, &now);
+    if (!s.ok()) {
+      rep.error = fail("verify: " + s.message);
+      return rep;
+    }
+    if (now != k0.state) {
       rep.mismatch = true;
       rep.mismatch_tick = 0;
       rep.expected_hash = k0.hash;
-      rep.actual_hash = h;
-      std::vector<uint8_t> now;
-      Status s = encode_world_state(world.id, &now);
-      if (s.ok() && diff_images(k0.state, now, &rep.difference, &rep.error, "recorded", "recomputed")) {
+      rep.actual_hash = XXH3_64bits(now.data(), now.size());
+      if (diff_images(k0.state, now, &rep.difference, &rep.error, "recorded", "recomputed")) {
         rep.located = true;
         rep.located_tick = 0;
       }
@@ -120,7 +131,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   size_t next_key = 1;
   uint64_t hash_after_mismatch = 0;
   for (uint64_t t = 1; t <= n; ++t) {
-    const TickRecord& rec = replay.ticks[t - 1];
+    const TickRecord& rec = replay.tick_record(t);
     Status s = run_tick(world.id, rec, dt, options.payloads, &rep.refused_commands, &rep.skipped_payloads);
     if (!s.ok()) {
       rep.error = fail("verify: " + s.message);
@@ -135,15 +146,24 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
       continue;
     }
     const uint64_t h = world_state_hash(world.id);
-    if (key != nullptr && key->hash != h) {
-      rep.mismatch = true;
-      rep.mismatch_tick = t;
-      rep.expected_hash = rec.has_hash && rec.hash != h ? rec.hash : key->hash;
-      rep.actual_hash = h;
-      hash_after_mismatch = h;
-      break;
+    if (key != nullptr) {
+      // Keyframes are compared byte for byte (their stored hash is of the image).
+      std::vector<uint8_t> now;
+      Status es = encode_world_state(world.id, &now);
+      if (!es.ok()) {
+        rep.error = fail("verify: tick " + std::to_string(t) + ": " + es.message);
+        return rep;
+      }
+      if (now != key->state) {
+        rep.mismatch = true;
+        rep.mismatch_tick = t;
+        rep.expected_hash = rec.has_hash ? rec.hash : key->hash;
+        rep.actual_hash = rec.has_hash ? h : XXH3_64bits(now.data(), now.size());
+        hash_after_mismatch = h;
+        break;
+      }
+      ++rep.keyframes_checked;
     }
-    if (key != nullptr) ++rep.keyframes_checked;
     if (rec.has_hash) {
       if (rec.hash != h) {
         rep.mismatch = true;
@@ -168,7 +188,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
       OwnedWorld second(w2.value);
       bool ran = true;
       for (uint64_t u = prev.tick + 1; u <= t && ran; ++u)
-        ran = run_tick(second.id, replay.ticks[u - 1], dt, options.payloads).ok();
+        ran = run_tick(second.id, replay.tick_record(u), dt, options.payloads).ok();
       if (ran && world_state_hash(second.id) != hash_after_mismatch) {
         rep.self_consistent = false;
         rep.note += "re-running from the keyframe at tick " + std::to_string(prev.tick) + " gives yet another hash at tick " +
@@ -189,7 +209,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
     return rep;
   }
   for (uint64_t u = t + 1; u <= target->tick; ++u) {
-    Status s = run_tick(world.id, replay.ticks[u - 1], dt, options.payloads);
+    Status s = run_tick(world.id, replay.tick_record(u), dt, options.payloads);
     if (!s.ok()) {
       rep.note += "could not re-run to the keyframe at tick " + std::to_string(target->tick) + ": " + s.message;
       return rep;
@@ -279,8 +299,8 @@ void locate_between_replays(const Replay& a, const Replay& b, uint64_t tick, con
 void compare_inputs(const Replay& a, const Replay& b, DiffReport* rep) {
   const uint64_t n = std::min(a.tick_count(), b.tick_count());
   for (uint64_t t = 1; t <= n; ++t) {
-    const auto& ca = a.ticks[t - 1].commands;
-    const auto& cb = b.ticks[t - 1].commands;
+    const auto& ca = a.tick_record(t).commands;
+    const auto& cb = b.tick_record(t).commands;
     bool same = ca.size() == cb.size();
     for (size_t i = 0; same && i < ca.size(); ++i) same = ca[i] == cb[i];
     if (!same) {
@@ -305,13 +325,14 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
   if (a.header.time_step != b.header.time_step)
     rep.note += "the replays use different time steps (" + q32_raw_text(a.header.time_step.raw) + " s and " +
                 q32_raw_text(b.header.time_step.raw) + " s). ";
-  // Tick 0.
-  if (a.keyframes[0].hash != b.keyframes[0].hash) {
+  // Tick 0: the initial states, by world_state_hash (as the tick hashes).
+  const uint64_t h0a = image_state_hash(a.keyframes[0].state), h0b = image_state_hash(b.keyframes[0].state);
+  if (h0a != h0b) {
     rep.differs = true;
     rep.method = "hash chain";
     rep.tick = 0;
-    rep.hash_a = a.keyframes[0].hash;
-    rep.hash_b = b.keyframes[0].hash;
+    rep.hash_a = h0a;
+    rep.hash_b = h0b;
     Status err;
     if (diff_images(a.keyframes[0].state, b.keyframes[0].state, &rep.difference, &err, "A", "B")) {
       rep.located = true;
@@ -323,16 +344,16 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
   }
   const uint64_t n = std::min(a.tick_count(), b.tick_count());
   bool all_hashes = true;
-  for (uint64_t t = 0; t < n && all_hashes; ++t) all_hashes = a.ticks[t].has_hash && b.ticks[t].has_hash;
+  for (uint64_t t = 1; t <= n && all_hashes; ++t) all_hashes = a.tick_record(t).has_hash && b.tick_record(t).has_hash;
   if (all_hashes) {
     rep.method = "hash chain";
     for (uint64_t t = 1; t <= n; ++t) {
       rep.ticks_compared = t;
-      if (a.ticks[t - 1].hash != b.ticks[t - 1].hash) {
+      if (a.tick_record(t).hash != b.tick_record(t).hash) {
         rep.differs = true;
         rep.tick = t;
-        rep.hash_a = a.ticks[t - 1].hash;
-        rep.hash_b = b.ticks[t - 1].hash;
+        rep.hash_a = a.tick_record(t).hash;
+        rep.hash_b = b.tick_record(t).hash;
         locate_between_replays(a, b, t, o, &rep);
         return rep;
       }
@@ -352,12 +373,12 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
     }
     OwnedWorld world_b(wb.value);
     for (uint64_t t = 1; t <= n; ++t) {
-      Status s = run_tick(world_a.id, a.ticks[t - 1], a.header.time_step, o.payloads_a);
+      Status s = run_tick(world_a.id, a.tick_record(t), a.header.time_step, o.payloads_a);
       if (!s.ok()) {
         rep.error = fail("diff: A: " + s.message);
         return rep;
       }
-      s = run_tick(world_b.id, b.ticks[t - 1], b.header.time_step, o.payloads_b);
+      s = run_tick(world_b.id, b.tick_record(t), b.header.time_step, o.payloads_b);
       if (!s.ok()) {
         rep.error = fail("diff: B: " + s.message);
         return rep;
@@ -409,7 +430,7 @@ DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advan
   const uint64_t n = std::min(ticks, a.tick_count());
   for (uint64_t t = 0; t <= n; ++t) {
     if (t > 0) {
-      Status s = run_tick(world_a.id, a.ticks[t - 1], a.header.time_step, o.payloads_a);
+      Status s = run_tick(world_a.id, a.tick_record(t), a.header.time_step, o.payloads_a);
       if (!s.ok()) {
         rep.error = fail("diff: replay: " + s.message);
         return rep;
@@ -422,7 +443,7 @@ DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advan
       rep.ticks_compared = t;
     }
     const uint64_t ha = world_state_hash(world_a.id), hb = world_state_hash(live);
-    if (t > 0 && a.ticks[t - 1].has_hash && a.ticks[t - 1].hash != ha)
+    if (t > 0 && a.tick_record(t).has_hash && a.tick_record(t).hash != ha)
       rep.note += "the replay does not verify at tick " + std::to_string(t) +
                   " (its re-simulation is compared, not the recorded run). ";
     if (ha != hb) {

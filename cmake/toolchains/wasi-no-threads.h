@@ -3,7 +3,11 @@
 // physics/world.cpp guards its world registry with std::mutex and
 // std::lock_guard. On a single-threaded target a lock that does nothing is
 // exact, so this supplies the two names, only when libc++ says it has no
-// threads. Test-toolchain only; nothing here reaches other builds.
+// threads. Likewise replay/state.cpp's thread_local scratch buffers need
+// __cxa_thread_atexit (registering their destructors), which wasi-libc
+// lacks: a weak do-nothing one is supplied (the buffers are then never
+// freed at exit, which a test run does not notice). Test-toolchain only;
+// nothing here reaches other builds.
 #pragma once
 #ifdef __cplusplus
 #include <mutex>
@@ -30,5 +34,6 @@ class lock_guard {
   Mutex& m_;
 };
 }  // namespace std
+extern "C" __attribute__((weak)) int __cxa_thread_atexit(void (*)(void*), void*, void*) { return 0; }
 #endif
 #endif

@@ -16,7 +16,6 @@ set(CMAKE_SYSROOT /usr)
 # GNU ar cannot index wasm objects.
 set(CMAKE_AR llvm-ar-14)
 set(CMAKE_RANLIB llvm-ranlib-14)
-set(CMAKE_EXECUTABLE_SUFFIX ".wasm")
 string(APPEND CMAKE_CXX_FLAGS_INIT " -fno-exceptions -DCATCH_CONFIG_DISABLE_EXCEPTIONS -DCATCH_CONFIG_NO_POSIX_SIGNALS"
   " -include ${CMAKE_CURRENT_LIST_DIR}/wasi-no-threads.h")
 set(CMAKE_CROSSCOMPILING_EMULATOR node --no-warnings ${CMAKE_CURRENT_LIST_DIR}/wasi-run.mjs)

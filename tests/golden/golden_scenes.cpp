@@ -28,7 +28,9 @@ using namespace tandem::literals;
 Q32 q(int64_t num, int64_t den = 1) { return Q32::from_ratio(num, den); }
 Vec2 v(Q32 x, Q32 y) { return {x, y}; }
 
-ShapeDef mat(Q32 friction = 0.6_q32, Q32 restitution = 0_q32, Q32 density = 1_q32) {
+// (Default arguments avoid _q32 literals: clang 14 rejects a consteval call
+// in a default argument.)
+ShapeDef mat(Q32 friction = Q32::from_ratio(3, 5), Q32 restitution = Q32::zero(), Q32 density = Q32::one()) {
   ShapeDef sd = default_shape_def();
   sd.friction = friction;
   sd.restitution = restitution;
@@ -36,7 +38,7 @@ ShapeDef mat(Q32 friction = 0.6_q32, Q32 restitution = 0_q32, Q32 density = 1_q3
   return sd;
 }
 
-BodyId body(SceneContext& c, BodyType type, Vec2 position, Q32 angle = 0_q32, Vec2 velocity = {}) {
+BodyId body(SceneContext& c, BodyType type, Vec2 position, Q32 angle = Q32::zero(), Vec2 velocity = {}) {
   BodyDef def = default_body_def();
   def.type = type;
   def.position = position;
@@ -44,7 +46,7 @@ BodyId body(SceneContext& c, BodyType type, Vec2 position, Q32 angle = 0_q32, Ve
   def.linear_velocity = velocity;
   return c.value(create_body(c.world, def), "create_body");
 }
-BodyId dyn(SceneContext& c, Vec2 position, Q32 angle = 0_q32, Vec2 velocity = {}) {
+BodyId dyn(SceneContext& c, Vec2 position, Q32 angle = Q32::zero(), Vec2 velocity = {}) {
   return body(c, BodyType::dynamic_body, position, angle, velocity);
 }
 
@@ -63,7 +65,7 @@ ShapeId add_offset_box(SceneContext& c, BodyId b, Q32 hw, Q32 hh, Vec2 center, Q
 }
 /// A regular-ish polygon with `n` vertices on a circle of radius r (exact
 /// fixed-point sines), rounded by `radius`.
-ShapeId add_ngon(SceneContext& c, BodyId b, int32_t n, Q32 r, Q32 radius = 0_q32, const ShapeDef& sd = mat()) {
+ShapeId add_ngon(SceneContext& c, BodyId b, int32_t n, Q32 r, Q32 radius = Q32::zero(), const ShapeDef& sd = mat()) {
   std::array<Vec2, 8> pts{};
   for (int32_t i = 0; i < n; ++i) {
     const Rot rot = rot_from_angle(k_pi * int64_t{2 * i} / int64_t{n});
@@ -95,7 +97,7 @@ BodyId container(SceneContext& c, int64_t half_width = 10, const ShapeDef& sd = 
 
 /// One dynamic body of a kind chosen by k (0 circle, 1 capsule, 2 box,
 /// 3 hexagon, 4 compound circle + box, 5 rounded triangle).
-BodyId add_kind(SceneContext& c, int64_t k, Vec2 p, Q32 angle = 0_q32, const ShapeDef& sd = mat()) {
+BodyId add_kind(SceneContext& c, int64_t k, Vec2 p, Q32 angle = Q32::zero(), const ShapeDef& sd = mat()) {
   const BodyId b = dyn(c, p, angle);
   switch (k % 6) {
     case 0: add_circle(c, b, q(2 + k % 3, 8), {}, sd); break;

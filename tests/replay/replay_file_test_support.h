@@ -89,6 +89,7 @@ struct RecordSpec {
   uint64_t perturb_tick = 0;     ///< 0: none; else after this tick's step, before its hash
   uint32_t perturb_body = 3;     ///< body index perturbed
   bool with_payloads = false;    ///< also record a payload each tick (the game applies its meaning itself)
+  BroadPhaseKind broad_phase = BroadPhaseKind::naive;
 };
 
 /// What the test game makes of a payload: byte 0 = body index, byte 1 =
@@ -103,7 +104,9 @@ inline Status payload_to_commands(uint64_t, std::span<const uint8_t> p, std::vec
 /// image. The loop is written out (rather than ReplayRecorder) so that it can
 /// perturb the state after a step, as a desync would.
 inline std::vector<uint8_t> record_scene(const RecordSpec& spec) {
-  OwnedWorld world;
+  WorldDef def = default_world_def();
+  def.broad_phase = spec.broad_phase;
+  OwnedWorld world(def);
   ReplayWriter writer;
   writer.open_memory(ReplayWriterOptions{spec.flush_every});
   ReplayHeader header;

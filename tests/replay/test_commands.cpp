@@ -151,7 +151,7 @@ TEST_CASE("random bytes never crash the command decoder", "[replay][commands]") 
   for (int iter = 0; iter < 2000; ++iter) {
     std::vector<uint8_t> bytes = valid;
     const int flips = 1 + static_cast<int>(rng() % 4);
-    for (int f = 0; f < flips; ++f) bytes[rng() % bytes.size()] = static_cast<uint8_t>(rng());
+    for (int f = 0; f < flips; ++f) bytes[static_cast<size_t>(rng() % bytes.size())] = static_cast<uint8_t>(rng());
     ByteReader r(bytes);
     std::vector<Command> back;
     if (decode_commands(r, &back)) {

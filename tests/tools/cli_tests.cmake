@@ -20,6 +20,9 @@ endfunction()
 tandem_cli_test(no-command 2 "" ERR "A subcommand is required")
 tandem_cli_test(unknown-command 2 "frobnicate" ERR "unknown command .frobnicate.")
 tandem_cli_test(version 0 "version" OUT "^tandem [0-9]+\\.[0-9]+\\.[0-9]+")
+tandem_cli_test(fixed-demo 0 "fixed-demo" OUT "Fingerprint of 200000 evaluations.*Physics preview")
+tandem_cli_test(fixed-sqrt 0 "fixed|sqrt|2" OUT "1\\.4142135")
+tandem_cli_test(fixed-bad-function 2 "fixed|cube|2" ERR "unknown function 'cube'")
 foreach(command run render demo)
   tandem_cli_test(${command}-help 0 "${command}|--help" OUT "Examples:\n  tandem ${command}")
 endforeach()
@@ -77,3 +80,7 @@ tandem_cli_test(render-replay-too-far 2 "render|${tandem_cli_out}/demo/rain.tand
   ERR "the replay has 60 ticks")
 set_tests_properties("cli/demo" PROPERTIES FIXTURES_SETUP tandem_demo_replay)
 set_tests_properties("cli/render-replay" "cli/render-replay-too-far" PROPERTIES FIXTURES_REQUIRED tandem_demo_replay)
+
+# An engine refusal of a scripted input stops the run with the input's path and tick.
+tandem_cli_test(run-input-refused 2 "run|${tandem_cli_data}/input_refused.json"
+  ERR "input_refused.json: /inputs/0 \\(tick 3\\): set_linear_velocity body .*faster than the world's maximum")

@@ -128,6 +128,11 @@ TEST_CASE("physics refusals at build time carry the JSON path") {
   Result<BuiltScene> bv = build_world(v);
   REQUIRE_FALSE(bv.ok());
   CHECK_THAT(bv.status.message, Catch::Contains("/bodies/0: "));
+  const Scene g = load_ok(R"({"generators": [{"type": "grid", "columns": 2, "rows": 1, "spacing": [2, 0],
+      "body": {"type": "dynamic", "shapes": [{"type": "circle", "radius": 0.5}, {"type": "circle", "radius": 0.5, "friction": 1000}]}}]})");
+  Result<BuiltScene> bg = build_world(g);
+  REQUIRE_FALSE(bg.ok());
+  CHECK_THAT(bg.status.message, Catch::Contains("/generators/0/body/shapes/1: ") && Catch::Contains("friction"));
   const Scene w = load_ok(R"({"world": {"contact_hertz": 0}})");
   Result<BuiltScene> bw = build_world(w);
   REQUIRE_FALSE(bw.ok());

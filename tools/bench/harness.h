@@ -9,6 +9,8 @@
 //   track_y_*           the tracked body's height (pyramid top box), m
 //   max_speed           fastest dynamic body at the end, m/s
 //   escaped             dynamic bodies whose centre ends outside the container
+//   moved               dynamic bodies that ended > 0.25 m sideways from their
+//                       start (a pyramid that stands has none)
 //   fingerprint         Tandem only: FNV-1a of every body's position,
 //                       rotation and velocity raws at the end, so broad
 //                       phases can be checked to give identical states
@@ -34,6 +36,7 @@ struct Quality {
   double track_y_end = 0;
   double max_speed = 0;
   int32_t escaped = 0;
+  int32_t moved = 0;  ///< dynamic bodies now more than 0.25 m sideways (x) from where they were made
   bool has_fingerprint = false;
   uint64_t fingerprint = 0;
 };

@@ -75,6 +75,7 @@ void probe(const SceneSpec& scene, const std::vector<BodyId>& bodies, bool end, 
     if (speed > q->max_speed) q->max_speed = speed;
     const Container& c = scene.container;
     if (x < c.min_x || x > c.max_x || y < c.min_y || y > c.max_y) ++q->escaped;
+    if (std::fabs(x - to_double(scene.bodies[i].x)) > 0.25) ++q->moved;
   }
   q->has_fingerprint = true;
   q->fingerprint = fp.h;

@@ -38,6 +38,7 @@ void probe(const SceneSpec& scene, const std::vector<cpBody*>& bodies, bool end,
     q->max_speed = std::max(q->max_speed, std::hypot(v.x, v.y));
     const Container& c = scene.container;
     if (p.x < c.min_x || p.x > c.max_x || p.y < c.min_y || p.y > c.max_y) ++q->escaped;
+    if (std::fabs(p.x - to_double(scene.bodies[i].x)) > 0.25) ++q->moved;
   }
 }
 

@@ -227,14 +227,15 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
   ProgressBar progress("replay", quiet || json);
   uint32_t refused = 0, skipped = 0;
   for (uint64_t t = 1; t <= ticks; ++t) {
-    const Status s = run_tick(world.id, replay.ticks[t - 1], replay.header.time_step, {}, &refused, &skipped);
+    const Status s = run_tick(world.id, replay.tick_record(t), replay.header.time_step, {}, &refused, &skipped);
     if (!s.ok()) return fail("replay", a.file + ": " + s.message);
     progress.update(t, ticks);
   }
   progress.finish();
   const uint64_t hash = world_state_hash(world.id);
-  const bool has_recorded = ticks > 0 ? replay.ticks[ticks - 1].has_hash : true;
-  const uint64_t recorded = ticks > 0 ? replay.ticks[ticks - 1].hash : replay.keyframes[0].hash;
+  // Tick 0 has no recorded world_state_hash (the keyframe stores its image's hash).
+  const bool has_recorded = ticks > 0 && replay.tick_record(ticks).has_hash;
+  const uint64_t recorded = has_recorded ? replay.tick_record(ticks).hash : 0;
   if (!a.save_state.empty()) {
     std::vector<uint8_t> state;
     Status s = encode_world_state(world.id, &state);

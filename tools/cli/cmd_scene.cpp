@@ -5,6 +5,14 @@
 // Tick convention (docs/scene-format.md): "tick T" is the state after T
 // steps; the scene's inputs for tick T are applied just before step T + 1.
 // Timing uses the steady clock around world_step only (inputs excluded).
+//
+// run: hashes with world_state_hash (replay/state.h) every K ticks and at the
+// end, plus a "bodies hash" (world_body_hashes folded) that leaves out the
+// world settings, so runs that differ only in the broad phase compare equal.
+// render: a scene file, or a replay file (is_replay_image), whose ticks are
+// played from its tick-0 keyframe. demo: rain.json for 5 s, recorded with
+// ReplayRecorder, read back and checked with verify_replay, then drawn; exit
+// code 1 when the verification fails.
 #include <unistd.h>
 
 #include <algorithm>

@@ -407,6 +407,23 @@ int64_t checked_count(int64_t a, int64_t b, const std::string& path) {
   return a * b;
 }
 
+// Generated coordinates are computed on raw values with overflow checks: a
+// far-out origin or spacing is an error naming the generator, never a
+// saturation (which stops debug builds).
+Q32 checked_mul(Q32 v, int64_t n, const std::string& path) {
+  int64_t r = 0;
+  if (__builtin_mul_overflow(v.raw, n, &r)) fail(path, "generated coordinates leave the Q32.32 range");
+  return Q32::from_raw(r);
+}
+Q32 checked_add(Q32 a, Q32 b, const std::string& path) {
+  int64_t r = 0;
+  if (__builtin_add_overflow(a.raw, b.raw, &r)) fail(path, "generated coordinates leave the Q32.32 range");
+  return Q32::from_raw(r);
+}
+Vec2 checked_add(Vec2 a, Vec2 b, const std::string& path) {
+  return Vec2{checked_add(a.x, b.x, path), checked_add(a.y, b.y, path)};
+}
+
 SceneBody template_body(const Obj& g, bool required) {
   SceneBody t;
   if (const JsonValue* b = g.find("body")) read_body_into(*b, g.at("body"), &t, true);
@@ -416,9 +433,8 @@ SceneBody template_body(const Obj& g, bool required) {
 
 void place_copy(const SceneBody& t, Vec2 offset, const std::string& path, std::vector<SceneBody>* out) {
   SceneBody b = t;
-  b.def.position = b.def.position + offset;
-  b.path = path;
-  b.shape_paths.assign(b.shapes.size(), path + "/body/shapes");
+  b.def.position = checked_add(b.def.position, offset, path);
+  b.path = path;  // the generator; shape_paths stay the template's (/generators/N/body/shapes/M)
   out->push_back(std::move(b));
 }
 
@@ -431,7 +447,10 @@ void expand_grid(const Obj& g, std::vector<SceneBody>* out) {
   const Vec2 spacing = read_vec2(g.need("spacing"), g.at("spacing"));
   for (int64_t r = 0; r < rows; ++r)
     for (int64_t c = 0; c < cols; ++c)
-      place_copy(t, origin + Vec2{spacing.x * c, spacing.y * r}, g.path(), out);
+      place_copy(t,
+                 checked_add(origin, Vec2{checked_mul(spacing.x, c, g.path()), checked_mul(spacing.y, r, g.path())},
+                             g.path()),
+                 g.path(), out);
 }
 
 void expand_pyramid(const Obj& g, std::vector<SceneBody>* out) {
@@ -441,7 +460,13 @@ void expand_pyramid(const Obj& g, std::vector<SceneBody>* out) {
   const Vec2 spacing = read_vec2(g.need("spacing"), g.at("spacing"));
   for (int64_t r = 0; r < base; ++r)
     for (int64_t c = 0; c < base - r; ++c)
-      place_copy(t, origin + Vec2{spacing.x * c + spacing.x * r / 2, spacing.y * r}, g.path(), out);
+      place_copy(t,
+                 checked_add(origin,
+                             Vec2{checked_add(checked_mul(spacing.x, c, g.path()), checked_mul(spacing.x, r, g.path()) / 2,
+                                              g.path()),
+                                  checked_mul(spacing.y, r, g.path())},
+                             g.path()),
+                 g.path(), out);
 }
 
 void expand_random(const Obj& g, std::vector<SceneBody>* out) {
@@ -468,15 +493,17 @@ void expand_random(const Obj& g, std::vector<SceneBody>* out) {
   }
   const Q32 size_min = read_q32_min(g.need("size_min"), g.at("size_min"), Q32{}, true);
   const Q32 size_max = read_q32_min(g.need("size_max"), g.at("size_max"), size_min, false);
+  if (size_max > k_max_shape_size) fail(g.at("size_max"), "expected at most " + to_string(k_max_shape_size) + " m");
   const Q32 speed = g.find("speed") ? read_q32_min(*g.find("speed"), g.at("speed"), Q32{}, false) : Q32{};
   // Jittered grid: one cell per body, 2.2 × size_max wide, filled row by row
   // from region.lower, so no two bodies start overlapping.
   const Q32 cell = size_max * 2 + size_max / 5;
-  const Q32 width = region.upper.x - region.lower.x, height = region.upper.y - region.lower.y;
-  const int64_t cols = (width / cell).raw >> 32, rows = (height / cell).raw >> 32;
-  if (cols < 1 || rows < 1 || cols * rows < count)
+  const Q32 width = checked_add(region.upper.x, -region.lower.x, g.at("region"));
+  const Q32 height = checked_add(region.upper.y, -region.lower.y, g.at("region"));
+  const int64_t cols = width.raw / cell.raw, rows = height.raw / cell.raw;  // floor: both positive
+  if (cols < 1 || rows < 1 || (count > 0 && rows < (count + cols - 1) / cols))
     fail(g.path(), "count " + std::to_string(count) + " does not fit: the region holds at most " +
-                       std::to_string(std::max<int64_t>(0, cols) * std::max<int64_t>(0, rows)) +
+                       std::to_string(std::max<int64_t>(0, cols) * std::max<int64_t>(0, rows)) +  // < 10^12 when it fails
                        " bodies of size_max " + to_string(size_max));
   SplitMix64 rng{seed};
   for (int64_t i = 0; i < count; ++i) {
