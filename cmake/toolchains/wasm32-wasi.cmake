@@ -18,7 +18,8 @@ set(CMAKE_AR llvm-ar-14)
 set(CMAKE_RANLIB llvm-ranlib-14)
 string(APPEND CMAKE_CXX_FLAGS_INIT " -fno-exceptions -DCATCH_CONFIG_DISABLE_EXCEPTIONS -DCATCH_CONFIG_NO_POSIX_SIGNALS"
   " -include ${CMAKE_CURRENT_LIST_DIR}/wasi-no-threads.h")
-set(CMAKE_CROSSCOMPILING_EMULATOR node --no-warnings ${CMAKE_CURRENT_LIST_DIR}/wasi-run.mjs)
+# --experimental-wasi-unstable-preview1: Debian 12's node 18 needs it for node:wasi; node 20 accepts it.
+set(CMAKE_CROSSCOMPILING_EMULATOR node --experimental-wasi-unstable-preview1 --no-warnings ${CMAKE_CURRENT_LIST_DIR}/wasi-run.mjs)
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
