@@ -131,6 +131,18 @@ Sweep still_sweep(Transform xf, Vec2 local_center) {
   return s;
 }
 
+/// An obstacle's pose at the end of the step, held still for the sweep: the
+/// solver state of a simulated body (kinematic, or dynamic after its own
+/// sweep), else its BodySim (static, or asleep: it does not move).
+Sweep end_pose(const World& world, const StepContext& context, int32_t shape) {
+  const int32_t ob = world.shapes[static_cast<size_t>(shape)].body_index;
+  const BodySim& sim = world.body_sims[static_cast<size_t>(ob)];
+  const int32_t si = context.body_to_solver[static_cast<size_t>(ob)];
+  if (si == k_null_index) return still_sweep(sim.transform, sim.local_center);
+  const BodyState& st = context.states[si];
+  return still_sweep({st.center - rotate(st.rotation, sim.local_center), st.rotation}, sim.local_center);
+}
+
 /// True when the shapes may collide by filter (contacts' rule, without the
 /// body-type tests).
 bool may_collide(const World& world, int32_t shape_a, int32_t shape_b) {
@@ -141,11 +153,9 @@ bool may_collide(const World& world, int32_t shape_a, int32_t shape_b) {
   return shapes_should_collide(world, std::min(shape_a, shape_b), std::max(shape_a, shape_b));
 }
 
-/// Sweeps body `b` (solver index i) against `candidates` and moves its end
-/// pose to the first impact. `other_pose(shape)` gives the candidate's pose.
-template <typename PoseFn>
-void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* candidates, int32_t candidate_count,
-                PoseFn other_pose) {
+/// Sweeps the body of solver index i against `candidates` (each held at its
+/// end_pose) and moves its end pose to the first impact.
+void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* candidates, int32_t candidate_count) {
   const int32_t b = context->solver_to_body[i];
   const Body& body = world->bodies[static_cast<size_t>(b)];
   const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
@@ -160,6 +170,8 @@ void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* ca
     const ShapeGeometry& geometry = world->shape_geometries[static_cast<size_t>(s)];
     const AABB swept = aabb_union(shape.aabb, compute_shape_aabb(geometry, end));
     const ShapeProxy proxy = make_shape_proxy(geometry);
+    ShapeProxy core;  // the centroid core (below), made when first needed
+    bool have_core = false;
     for (int32_t k = 0; k < candidate_count; ++k) {
       const int32_t o = candidates[k];
       const Shape& other = world->shapes[static_cast<size_t>(o)];
@@ -169,7 +181,7 @@ void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* ca
       input.proxy_a = proxy;
       input.proxy_b = make_shape_proxy(world->shape_geometries[static_cast<size_t>(o)]);
       input.sweep_a = sweep;
-      input.sweep_b = other_pose(o);
+      input.sweep_b = end_pose(*world, *context, o);
       input.max_fraction = best;
       ToiOutput out = time_of_impact(input);
       if (out.fraction == Q32::zero() || out.state == ToiState::overlapped) {
@@ -178,10 +190,14 @@ void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* ca
         // spin can still carry the rest of the shape through: sweep a small
         // core (a circle of a quarter of the thinnest extent at the shape's
         // centroid) so that at least the centroid cannot tunnel.
-        Q32 lo, hi;
-        shape_extents(geometry, shape_centroid(geometry), &lo, &hi);
-        const Vec2 centroid = shape_centroid(geometry);
-        input.proxy_a = make_proxy(&centroid, 1, lo / 4);
+        if (!have_core) {
+          const Vec2 centroid = shape_centroid(geometry);
+          Q32 thinnest, farthest;
+          shape_extents(geometry, centroid, &thinnest, &farthest);
+          core = make_proxy(&centroid, 1, thinnest / 4);
+          have_core = true;
+        }
+        input.proxy_a = core;
         out = time_of_impact(input);
       }
       if ((out.state == ToiState::hit || out.state == ToiState::failed) && out.fraction > Q32::zero() &&
@@ -224,7 +240,7 @@ void stage_continuous(World* world, StepContext* context) {
   Arena* arena = &world->arena;
   // Fast bodies, marked per solver index (0: slow, 1: fast, 2: fast bullet).
   uint8_t* fast = arena_allocate_array<uint8_t>(arena, count, "fast_bodies");
-  int32_t fast_count = 0;
+  int32_t fast_count = 0, bullet_count = 0;
   for (int32_t i = 0; i < count; ++i) {
     fast[i] = 0;
     const int32_t b = context->solver_to_body[i];
@@ -239,6 +255,7 @@ void stage_continuous(World* world, StepContext* context) {
     if ((length(d) + turn) * 2 > body.min_extent) {
       fast[i] = body.bullet ? 2 : 1;
       ++fast_count;
+      if (body.bullet) ++bullet_count;
     }
   }
   context->fast_body_count = fast_count;
@@ -256,25 +273,11 @@ void stage_continuous(World* world, StepContext* context) {
     const Body& owner = world->bodies[static_cast<size_t>(shape.body_index)];
     if (owner.type != BodyType::dynamic_body && !shape.is_sensor) obstacles[obstacle_count++] = s;
   }
-  // A static or kinematic obstacle's pose at the end of the step: a kinematic
-  // body's solver state, else its BodySim (static: never moves).
-  const auto obstacle_pose = [world, context](int32_t shape) {
-    const int32_t ob = world->shapes[static_cast<size_t>(shape)].body_index;
-    const BodySim& sim = world->body_sims[static_cast<size_t>(ob)];
-    const int32_t si = context->body_to_solver[static_cast<size_t>(ob)];
-    if (si != k_null_index) {
-      const BodyState& st = context->states[si];
-      return still_sweep({st.center - rotate(st.rotation, sim.local_center), st.rotation}, sim.local_center);
-    }
-    return still_sweep(sim.transform, sim.local_center);
-  };
   for (int32_t i = 0; i < count; ++i) {
-    if (fast[i] == 1) sweep_body(world, context, i, obstacles, obstacle_count, obstacle_pose);
+    if (fast[i] == 1) sweep_body(world, context, i, obstacles, obstacle_count);
   }
   // Bullets: also against non-bullet dynamic bodies at their final pose.
-  bool any_bullet = false;
-  for (int32_t i = 0; i < count && !any_bullet; ++i) any_bullet = fast[i] == 2;
-  if (any_bullet) {
+  if (bullet_count > 0) {
     int32_t* targets = arena_allocate_array<int32_t>(arena, shape_capacity, "ccd_bullet_targets");
     int32_t target_count = 0;
     for (int32_t s = 0; s < shape_capacity; ++s) {
@@ -284,18 +287,8 @@ void stage_continuous(World* world, StepContext* context) {
       const Body& owner = world->bodies[static_cast<size_t>(shape.body_index)];
       if (owner.type != BodyType::dynamic_body || !owner.bullet) targets[target_count++] = s;
     }
-    const auto target_pose = [world, context, &obstacle_pose](int32_t shape) {
-      const int32_t ob = world->shapes[static_cast<size_t>(shape)].body_index;
-      const Body& owner = world->bodies[static_cast<size_t>(ob)];
-      if (owner.type != BodyType::dynamic_body) return obstacle_pose(shape);
-      const BodySim& sim = world->body_sims[static_cast<size_t>(ob)];
-      const int32_t si = context->body_to_solver[static_cast<size_t>(ob)];
-      if (si == k_null_index) return still_sweep(sim.transform, sim.local_center);  // asleep
-      const BodyState& st = context->states[si];
-      return still_sweep({st.center - rotate(st.rotation, sim.local_center), st.rotation}, sim.local_center);
-    };
     for (int32_t i = 0; i < count; ++i) {
-      if (fast[i] == 2) sweep_body(world, context, i, targets, target_count, target_pose);
+      if (fast[i] == 2) sweep_body(world, context, i, targets, target_count);
     }
     arena_free(arena, targets);
   }

@@ -146,14 +146,18 @@ void events_after_contacts(World* w) {
   }
 }
 
+void events_clear_reported(EventState* e) {
+  e->contact_begin.clear();
+  e->contact_end.clear();
+  e->contact_hit.clear();
+  e->sensor_begin.clear();
+  e->sensor_end.clear();
+  e->body_move.clear();
+}
+
 void events_after_step(World* w) {
   EventState& e = w->events;
-  e.contact_begin.clear();
-  e.contact_end.clear();
-  e.contact_hit.clear();
-  e.sensor_begin.clear();
-  e.sensor_end.clear();
-  e.body_move.clear();
+  events_clear_reported(&e);
 
   // Contacts: the touching set now (contacts are sorted by key).
   e.touching_next.clear();

@@ -158,6 +158,10 @@ struct EventState {
 /// Called by world_step right after the contact update: records start
 /// transforms and hit candidates.
 void events_after_contacts(World* world);
+/// Empties the six reported lists (contact begin/end/hit, sensor begin/end,
+/// body move), keeping their capacity: the start of events_after_step, and a
+/// snapshot restore (whose world has reported nothing yet).
+void events_clear_reported(EventState* events);
 /// Called by world_step after finalize: builds every event list.
 void events_after_step(World* world);
 /// Called at the end of world_step: grows buffers with headroom.

@@ -783,12 +783,7 @@ void commit_image(World* w, WorldImage& img) {
   e.touching_next.clear();
   e.sensor_next.clear();
   e.hit_candidates.clear();
-  e.contact_begin.clear();
-  e.contact_end.clear();
-  e.contact_hit.clear();
-  e.sensor_begin.clear();
-  e.sensor_end.clear();
-  e.body_move.clear();
+  events_clear_reported(&e);
   broad_phase_reset(w);
   // Buffers sized for the restored scene, so its next step does not allocate.
   reserve_contact_headroom(w);
