@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "physics/tandem.h"
+#include "fixed/splitmix64.h"
 #include "physics_test_support.h"
 
 using namespace tandem;
@@ -33,10 +34,7 @@ namespace {
 struct SplitMix64 {
   uint64_t s;
   uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return splitmix64_next(&s);
   }
   /// Uniform in [a, b), from the top 53 bits.
   double uni(double a, double b) {

@@ -2,6 +2,8 @@
 // and for why every value is built from integers).
 #include "scenes.h"
 
+#include "fixed/splitmix64.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <utility>
@@ -15,10 +17,7 @@ namespace {
 struct SplitMix64 {
   uint64_t s;
   uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return splitmix64_next(&s);
   }
   /// Uniform in [a, b): a + (b − a)·u with u the top 32 bits of a draw as a
   /// Q32.32 fraction in [0, 1), one rounded Q32 product.

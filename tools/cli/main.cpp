@@ -22,6 +22,7 @@
 
 #include "fixed/fixed.h"
 #include "fixed/fixed_math.h"
+#include "fixed/splitmix64.h"
 #include "fixed/vec2.h"
 #include "physics/tandem.h"
 #include "cli.h"
@@ -57,12 +58,7 @@ struct Fingerprint {
 uint64_t determinism_fingerprint(int count) {
   // splitmix64: fully specified, so every platform draws the same inputs.
   uint64_t state = 0x7A4D3E11u;
-  auto next = [&state] {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
+  auto next = [&state] { return tandem::splitmix64_next(&state); };
   Fingerprint fp;
   for (int i = 0; i < count; ++i) {
     const Q32 a = Q32::from_raw(static_cast<int64_t>(next() >> 20) - (int64_t{1} << 43));  // ±2048

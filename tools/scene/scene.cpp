@@ -7,6 +7,8 @@
 // them, and scene_format_keys() hands them to the documentation test.
 #include "scene.h"
 
+#include "fixed/splitmix64.h"
+
 #include <algorithm>
 #include <array>
 #include <fstream>
@@ -389,10 +391,7 @@ void read_body_into(const JsonValue& v, const std::string& path, SceneBody* body
 struct SplitMix64 {
   uint64_t state;
   uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return splitmix64_next(&state);
   }
   // A value in [lo, hi] (raw units; modulo draw, a bias below 2^-30 here).
   Q32 between(Q32 lo, Q32 hi) {
