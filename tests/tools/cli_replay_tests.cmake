@@ -103,3 +103,17 @@ tandem_replay_cli_test(synctest-stack 0 "synctest|scenes/stack.json|--ticks|30|-
 tandem_replay_cli_test(synctest-json 0 "synctest|scenes/impulses.json|--ticks|20|--json"
   OUT "\"result\":\"passed\"")
 tandem_replay_cli_test(synctest-bad-rollback 2 "synctest|scenes/stack.json|--rollback|0" ERR "rollback")
+
+# --- state: every body at one tick, from a scene or a replay ------------------------------
+tandem_replay_cli_test(state-replay-matches-scene 0 "state|${out}/stack.tnr|--tick|30"
+  OUT "^tick 30: 13 bodies, world hash 0x[0-9a-f]+\n# body .*\nbody 1:1 dynamic (awake|asleep) \\| p -?[0-9.]+ \\[-?[0-9]+\\] "
+  SAME "state|scenes/stack.json|--tick|30" REQUIRES replay_stack)
+tandem_replay_cli_test(state-quiet 0 "state|scenes/impulses.json|--tick|25|--quiet"
+  OUT "^tick 25: [0-9]+ bodies, world hash 0x[0-9a-f]+\n$")
+tandem_replay_cli_test(state-json 0 "state|${out}/stack.tnr|--tick|0|--json"
+  OUT "^\\{\"tick\":0,\"world_hash\":\"0x[0-9a-f]+\",\"bodies\":\\[\\{\"index\":0,\"generation\":1,\"type\":\"static\",\"position\":\\{\"x\":\\{\"value\":\"[-0-9.]+\",\"raw\":-?[0-9]+\\}"
+  REQUIRES replay_stack)
+tandem_replay_cli_test(state-past-end 2 "state|${out}/stack.tnr|--tick|61"
+  ERR "stack.tnr: --tick 61 is past the last recorded tick 60" REQUIRES replay_stack)
+tandem_replay_cli_test(state-help 0 "state|--help" OUT "Examples:\n  tandem state")
+tandem_replay_cli_test(state-bad-scene 2 "state|${out}/none.json" ERR "none.json: cannot open")

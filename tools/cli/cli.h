@@ -6,6 +6,7 @@
 //   cmd_scene.cpp    run, render, demo           (scene files, tools/scene)
 //   cmd_replay.cpp   record, replay, verify, diff, synctest (replay/)
 //   cmd_bench.cpp    bench                       (tools/bench scenes and peers)
+//   cmd_state.cpp    state                       (bodies at one tick, exact)
 // Exit codes: 0 success, 1 the check failed (verify mismatch, diff found a
 // difference), 2 bad usage or bad input (missing file, malformed scene).
 #pragma once
@@ -36,5 +37,7 @@ void register_scene_commands(CLI::App& app, const GlobalOptions& options, std::v
 void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 /// Adds bench to `app` (cmd_bench.cpp).
 void register_bench_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
+/// Adds state to `app` (cmd_state.cpp).
+void register_state_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 
 }  // namespace tandem::cli

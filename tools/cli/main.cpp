@@ -5,7 +5,8 @@
 //   tandem fixed FUNC ARGS...   evaluate one fixed-point function and show every bit
 //   tandem version              engine and format versions
 // and, registered by their families (cli.h): run, render, demo (cmd_scene.cpp),
-// record, replay, verify, diff, synctest (cmd_replay.cpp), bench (cmd_bench.cpp).
+// record, replay, verify, diff, synctest (cmd_replay.cpp), bench (cmd_bench.cpp),
+// state (cmd_state.cpp).
 // Usage errors exit with 2 (CLI11's own codes are mapped), --help with 0.
 //
 // Doubles appear here only to print exact-value oracles; nothing computed in
@@ -321,6 +322,7 @@ int main(int argc, char** argv) {
   tandem::cli::register_scene_commands(app, options, &commands);
   tandem::cli::register_replay_commands(app, options, &commands);
   tandem::cli::register_bench_commands(app, options, &commands);
+  tandem::cli::register_state_commands(app, options, &commands);
 
   if (argc > 1 && argv[1][0] != '-') {  // CLI11 alone would only say "A subcommand is required"
     const std::string name = argv[1];
