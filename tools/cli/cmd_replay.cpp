@@ -17,8 +17,6 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -29,6 +27,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "cli_util.h"
 #include "replay/commands.h"
 #include "replay/replay_file.h"
 #include "replay/state.h"
@@ -44,43 +43,6 @@ using Json = nlohmann::ordered_json;
 
 std::string hex64(uint64_t v) { return hash_text(v); }
 
-// Progress on stderr: only on a terminal, only after the first second.
-class ProgressBar {
- public:
-  ProgressBar(const char* label, bool off) : label_(label), enabled_(!off && isatty(STDERR_FILENO) != 0) {}
-  ~ProgressBar() { finish(); }
-  void update(uint64_t done, uint64_t total) {
-    if (!enabled_ || total == 0) return;
-    const auto now = Clock::now();
-    if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    shown_ = true;
-    const uint64_t width = 40;
-    const uint64_t filled = done * width / total;
-    std::fprintf(stderr, "\r%s [%s%s] %3d%% tick %" PRIu64 "/%" PRIu64, label_, std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), static_cast<int>(done * 100 / total), done, total);
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (shown_) std::fprintf(stderr, "\r%s\r", std::string(80, ' ').c_str());
-    shown_ = false;
-  }
-  ProgressCallback callback() {
-    return [this](uint64_t done, uint64_t total) { update(done, total); };
-  }
-
- private:
-  const char* label_;
-  bool enabled_;
-  bool shown_ = false;
-  Clock::time_point start_ = Clock::now(), last_ = start_;
-};
-
-int fail(const char* command, const std::string& message) {
-  std::fprintf(stderr, "tandem %s: %s\n", command, message.c_str());
-  return 2;
-}
-
 // Reads a replay file; prints the error (exit 2) or the truncation warning.
 int load_replay(const char* command, const std::string& path, Replay* out, ReplayReadInfo* info) {
   const Status s = read_replay_file(path, out, info);
@@ -88,14 +50,6 @@ int load_replay(const char* command, const std::string& path, Replay* out, Repla
   if (!info->warning.empty()) std::fprintf(stderr, "tandem %s: warning: %s\n", command, info->warning.c_str());
   return 0;
 }
-
-// A world destroyed at the end of the scope.
-struct OwnedWorld {
-  WorldId id;
-  ~OwnedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-};
 
 // A loaded and built scene (prints its errors).
 struct LoadedScene {
@@ -284,7 +238,7 @@ int run_verify(const VerifyArgs& a, const GlobalOptions& g) {
   if (int rc = load_replay("verify", a.file, &replay, &info)) return rc;
   ProgressBar progress("verify", quiet || json);
   VerifyOptions options;
-  options.progress = progress.callback();
+  options.progress = [&progress](uint64_t done, uint64_t total) { progress.update(done, total); };
   const VerifyReport rep = verify_replay(replay, options);
   progress.finish();
   const int rc = verify_exit_code(rep);
@@ -350,7 +304,7 @@ int run_diff(const DiffArgs& a, const GlobalOptions& g) {
     if (!ia.warning.empty()) std::fprintf(stderr, "tandem diff: warning: %s: %s\n", a.a.c_str(), ia.warning.c_str());
     if (!ib.warning.empty()) std::fprintf(stderr, "tandem diff: warning: %s: %s\n", a.b.c_str(), ib.warning.c_str());
     DiffOptions options;
-    options.progress = progress.callback();
+    options.progress = [&progress](uint64_t done, uint64_t total) { progress.update(done, total); };
     rep = diff_replays(ra, rb, options);
   } else if (!replay_a && !replay_b) {
     rep = diff_snapshots(bytes_a, bytes_b);
@@ -466,8 +420,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
       ->check(CLI::Range(1u, 1u << 20));
   record->add_flag("--no-hash", record_args->no_hash, "do not record a state hash after each tick");
   record->add_flag("--no-embed", record_args->no_embed, "store only the scene's hash, not its text");
-  record->add_flag("--json", record_args->json, "machine-readable output on stdout");
-  record->add_flag("--quiet,-q", record_args->quiet, "print only the final hash");
+  add_output_flags(record, &record_args->json, &record_args->quiet, "print only the final hash");
   record->footer(
       "Examples:\n  tandem record scenes/pyramid.json -o pyramid.tnr\n"
       "  tandem record scenes/rain.json -o rain.tnr --ticks 3600 --keyframe-every 60\n"
@@ -480,8 +433,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
   replay->add_option("--ticks,-n", replay_args->ticks, "stop after this tick (default: all recorded)")
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 40));
   replay->add_option("--save-state", replay_args->save_state, "write the final world state (a snapshot) to this file");
-  replay->add_flag("--json", replay_args->json, "machine-readable output on stdout");
-  replay->add_flag("--quiet,-q", replay_args->quiet, "print only the final hash");
+  add_output_flags(replay, &replay_args->json, &replay_args->quiet, "print only the final hash");
   replay->footer(
       "Examples:\n  tandem replay pyramid.tnr\n  tandem replay pyramid.tnr --ticks 120 --save-state t120.state\n"
       "  tandem replay rain.tnr --json\n");
@@ -491,8 +443,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
       "verify", "Re-simulate a replay and check every recorded hash (exit 0 match, 1 mismatch, 2 bad file)");
   auto verify_args = std::make_shared<VerifyArgs>();
   verify->add_option("file", verify_args->file, "replay file")->required();
-  verify->add_flag("--json", verify_args->json, "machine-readable output on stdout");
-  verify->add_flag("--quiet,-q", verify_args->quiet, "print only OK or the mismatching tick");
+  add_output_flags(verify, &verify_args->json, &verify_args->quiet, "print only OK or the mismatching tick");
   verify->footer(
       "On a mismatch, verify names the first tick whose hash differs and, from the\n"
       "next keyframe, the first differing body and field.\n"
@@ -504,8 +455,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
   auto diff_args = std::make_shared<DiffArgs>();
   diff->add_option("a", diff_args->a, "replay or snapshot file")->required();
   diff->add_option("b", diff_args->b, "replay or snapshot file (the same kind as A)")->required();
-  diff->add_flag("--json", diff_args->json, "machine-readable output on stdout");
-  diff->add_flag("--quiet,-q", diff_args->quiet, "print only the first difference");
+  add_output_flags(diff, &diff_args->json, &diff_args->quiet, "print only the first difference");
   diff->footer(
       "Exit code 0 identical, 1 different, 2 bad input.\n"
       "Examples:\n  tandem diff mine.tnr theirs.tnr\n  tandem diff mine.tnr theirs.tnr --json\n"
@@ -521,8 +471,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
       ->check(CLI::Range(int64_t{0}, int64_t{INT32_MAX}));
   sync->add_option("--rollback,-k", sync_args->rollback, "ticks rolled back and re-simulated each tick (1-1024, default 8)")
       ->check(CLI::Range(1, 1024));
-  sync->add_flag("--json", sync_args->json, "machine-readable output on stdout");
-  sync->add_flag("--quiet,-q", sync_args->quiet, "print only the result line");
+  add_output_flags(sync, &sync_args->json, &sync_args->quiet, "print only the result line");
   sync->footer(
       "Exit code 0 passed, 1 mismatch, 2 bad input.\n"
       "Examples:\n  tandem synctest scenes/pyramid.json --ticks 300\n"

@@ -13,7 +13,6 @@
 // played from its tick-0 keyframe. demo: rain.json for 5 s, recorded with
 // ReplayRecorder, read back and checked with verify_replay, then drawn; exit
 // code 1 when the verification fails.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,6 +23,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "cli_util.h"
 #include "render/render.h"
 #include "replay/replay_file.h"
 #include "replay/state.h"
@@ -151,30 +151,6 @@ int step_once(const std::string& command, Session* s, bool timed) {
   return 0;
 }
 
-// Progress on stderr: only on a terminal, only after the first second.
-struct Progress {
-  bool enabled;
-  Clock::time_point start = Clock::now(), last = start;
-  bool shown = false;
-  explicit Progress(bool quiet) : enabled(!quiet && isatty(STDERR_FILENO) != 0) {}
-  void update(int64_t done, int64_t total) {
-    if (!enabled || total <= 0) return;
-    const auto now = Clock::now();
-    if (now - start < std::chrono::seconds(1) || now - last < std::chrono::milliseconds(100)) return;
-    last = now;
-    shown = true;
-    const int width = 40;
-    const auto filled = static_cast<int>(done * width / total);
-    std::fprintf(stderr, "\r[%s%s] %3d%% tick %" PRId64 "/%" PRId64, std::string(static_cast<size_t>(filled), '#').c_str(),
-                 std::string(static_cast<size_t>(width - filled), ' ').c_str(), static_cast<int>(done * 100 / total), done,
-                 total);
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (shown) std::fprintf(stderr, "\r%s\r", std::string(70, ' ').c_str());
-  }
-};
-
 int32_t shape_total(WorldId world) { return world_counters(world).shape_count; }
 
 // --- run ---------------------------------------------------------------------
@@ -198,13 +174,13 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
   std::vector<Mark> marks;
   marks.push_back({0, world_state_hash(s.built.world)});
   s.step_seconds.reserve(static_cast<size_t>(std::min<int64_t>(ticks, 1 << 24)));
-  Progress progress(quiet || json);
+  ProgressBar progress("", quiet || json);
   const auto wall0 = Clock::now();
   while (s.tick < ticks) {
     if (int rc = step_once("run", &s, true)) return rc;
     if (a.hash_every > 0 && s.tick % a.hash_every == 0 && s.tick != ticks)
       marks.push_back({s.tick, world_state_hash(s.built.world)});
-    progress.update(s.tick, ticks);
+    progress.update(static_cast<uint64_t>(s.tick), static_cast<uint64_t>(ticks));
   }
   progress.finish();
   const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -432,7 +408,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
   if (Status st = recorder.begin(s.built.world, scene_bytes); !st.ok())
     return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
   const auto wall0 = Clock::now();
-  Progress progress(g.quiet);
+  ProgressBar progress("", g.quiet);
   while (true) {
     if (s.tick % frame_every == 0 || s.tick == ticks) {
       options.caption = "tick " + std::to_string(s.tick);
@@ -447,7 +423,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
     s.step_seconds.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     if (!r.ok()) return std::fprintf(stderr, "tandem demo: step %" PRId64 ": %s\n", s.tick + 1, r.status.message.c_str()), 2;
     ++s.tick;
-    progress.update(s.tick, ticks);
+    progress.update(static_cast<uint64_t>(s.tick), static_cast<uint64_t>(ticks));
   }
   progress.finish();
   if (Status st = recorder.finish(); !st.ok()) return std::fprintf(stderr, "tandem demo: %s\n", st.message.c_str()), 2;
@@ -512,8 +488,7 @@ void register_scene_commands(CLI::App& app, const GlobalOptions& options, std::v
       ->check(CLI::IsMember(broad_phases));
   run->add_option("--hash-every", run_args->hash_every, "print the state hash every K ticks (0: final only)")
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 40));
-  run->add_flag("--json", run_args->json, "machine-readable output on stdout");
-  run->add_flag("--quiet,-q", run_args->quiet, "print only the final hash");
+  add_output_flags(run, &run_args->json, &run_args->quiet, "print only the final hash");
   run->footer(
       "Examples:\n  tandem run scenes/pyramid.json\n  tandem run scenes/circles.json --ticks 3600 --broadphase grid\n"
       "  tandem run scenes/rain.json --hash-every 0 --json\n");

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "cli_util.h"
 #include "replay/commands.h"
 #include "replay/replay_file.h"
 #include "replay/state.h"
@@ -36,10 +37,7 @@ struct StateArgs {
   bool json = false, quiet = false;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "tandem state: %s\n", message.c_str());
-  return 2;
-}
+int fail(const std::string& message) { return cli::fail("state", message); }
 
 // True when the file starts with the replay magic (replay_file.h), else a scene.
 bool looks_like_replay(const std::vector<uint8_t>& bytes) {
@@ -161,8 +159,7 @@ void register_state_commands(CLI::App& app, const GlobalOptions& options, std::v
   state->add_option("--tick,-t", args->tick, "tick to show: 0 is before the first step (default: the scene's "
                                              "\"ticks\", or a replay's last recorded tick)")
       ->check(CLI::NonNegativeNumber);
-  state->add_flag("--json", args->json, "machine-readable output on stdout");
-  state->add_flag("--quiet,-q", args->quiet, "print only the summary line (tick, body count, world hash)");
+  add_output_flags(state, &args->json, &args->quiet, "print only the summary line (tick, body count, world hash)");
   state->footer(
       "Numbers are exact decimals with their raw Q32.32 value; outputs from two machines diff line by line.\n"
       "Examples:\n"
