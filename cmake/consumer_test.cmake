@@ -35,6 +35,28 @@ foreach(f ${LIBDIR}/cmake/Tandem/TandemConfig.cmake ${LIBDIR}/pkgconfig/tandem.p
   endif()
 endforeach()
 
+# --- the include tree holds only the public API ------------------------------------
+# Internal headers (the engine's own furniture) must not be installed, and every
+# installed header may include only installed headers.
+foreach(internal physics/world.h physics/arena.h physics/body.h physics/shape.h physics/contact.h
+        physics/contact_solver.h physics/broad_phase.h physics/event_state.h physics/island.h physics/id_pool.h)
+  if(EXISTS ${prefix}/include/tandem/${internal})
+    message(FATAL_ERROR "consumer test: the internal header ${internal} was installed")
+  endif()
+endforeach()
+file(GLOB_RECURSE installed_headers RELATIVE ${prefix}/include/tandem ${prefix}/include/tandem/*.h)
+foreach(h IN LISTS installed_headers)
+  file(STRINGS ${prefix}/include/tandem/${h} includes REGEX "^#include \"[a-z_0-9]+/[a-z_0-9]+\\.h\"")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" inc "${line}")
+    if(NOT EXISTS ${prefix}/include/tandem/${inc})
+      message(FATAL_ERROR "consumer test: installed ${h} includes ${inc}, which is not installed (internal?)")
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH installed_headers n_headers)
+message(STATUS "consumer test: ${n_headers} installed headers, none internal")
+
 # --- find_package(Tandem) --------------------------------------------------------
 step("configure tests/consumer" ${CMAKE_COMMAND} -S ${TANDEM_CONSUMER_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
   -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DCMAKE_PREFIX_PATH=${prefix}

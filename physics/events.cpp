@@ -12,7 +12,7 @@
 // say whether a point pushed during the step: a bounce latched in the last
 // sub-step stores zero, so the hit test is kinematic.)
 // The vectors only grow; events_reserve_headroom keeps spare capacity.
-#include "physics/events.h"
+#include "physics/event_state.h"
 
 #include <utility>
 

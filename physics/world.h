@@ -42,7 +42,7 @@
 #include "physics/broad_phase.h"
 #include "physics/contact.h"
 #include "physics/contact_solver.h"
-#include "physics/events.h"
+#include "physics/event_state.h"
 #include "physics/defs.h"
 #include "physics/id_pool.h"
 #include "physics/island.h"
