@@ -3,9 +3,13 @@
 // naive implementation. See broad_phase.h for the contract.
 //
 // Pre-pass: proxies are gathered in ascending shape index (live, non-sensor
-// shapes on enabled bodies), each with its AABB fattened by
-// k_speculative_distance (exact additions), into a list and into by-shape
-// arrays that the structures read.
+// shapes on enabled bodies), each with its AABB sanitised (clamped into
+// ±k_broad_phase_coordinate_limit and put in order per axis; the identity for
+// every box a world computes) and fattened by k_speculative_distance (exact
+// additions), into a list and into by-shape arrays that the structures read.
+// Sanitising here, once, is what makes every structure safe against a corrupt
+// box: the sweep's end points always open before they close, the grid's and
+// tree's arithmetic stays far from overflow, and fattening never saturates.
 //
 // Naive: for i < j over the proxy list, a pair is emitted when the fat boxes
 // overlap and the filters agree; the nested loop visits (i, j) in ascending
@@ -91,7 +95,7 @@ void gather_proxies(World* world) {
     const Body& body = world->bodies[static_cast<size_t>(shape.body_index)];
     if (shape.is_sensor || !body.enabled) continue;
     const bool dynamic = body.type == BodyType::dynamic_body;
-    const AABB fat = aabb_fatten(shape.aabb, k_speculative_distance);
+    const AABB fat = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
     bp.shape_kind[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
     bp.shape_fat[si] = fat;
     bp.shape_filter[si] =
@@ -166,6 +170,17 @@ void reserve_for(std::vector<T>* v, size_t use) {
 }
 
 }  // namespace
+
+AABB broad_phase_sanitize_box(AABB box) {
+  const auto clamp = [](Q32 v) {
+    return Q32::from_raw(v.raw < -k_broad_phase_coordinate_limit
+                             ? -k_broad_phase_coordinate_limit
+                             : (v.raw > k_broad_phase_coordinate_limit ? k_broad_phase_coordinate_limit : v.raw));
+  };
+  const Q32 x0 = clamp(box.lower.x), x1 = clamp(box.upper.x);
+  const Q32 y0 = clamp(box.lower.y), y1 = clamp(box.upper.y);
+  return AABB{{x0 < x1 ? x0 : x1, y0 < y1 ? y0 : y1}, {x0 < x1 ? x1 : x0, y0 < y1 ? y1 : y0}};
+}
 
 void broad_phase_emit_candidate(World* world, int32_t a, int32_t b) {
   BroadPhase& bp = world->broad_phase;

@@ -3,7 +3,9 @@
 // Contract every broad phase implements (naive, sweep-and-prune, grid and
 // tree, selected by WorldDef::broad_phase / world_set_broad_phase):
 //   * Input: the world's live shapes with their world AABBs (Shape::aabb,
-//     updated at the end of each step and on teleport).
+//     updated at the end of each step and on teleport), passed through
+//     broad_phase_sanitize_box (the identity for any box a world computes;
+//     any box at all, inverted or at the limits of Q32, is safe).
 //   * Output: every pair of shapes whose AABBs, each fattened by
 //     k_speculative_distance, overlap (closed intervals) and that may
 //     collide (shapes_should_collide, then the custom filter), as (lower
@@ -177,6 +179,21 @@ void broad_phase_reset(World* world);
 /// Grows the broad phase's buffers (outside the step) so that the next steps
 /// of a scene whose counts drift a little do not allocate.
 void broad_phase_reserve_headroom(World* world);
+
+/// Raw Q32 bound (2^60, about 2.7e8 m) that broad_phase_sanitize_box clamps
+/// box coordinates into; every box of a valid world lies far inside it
+/// (limits.h: ±k_max_world_coordinate plus k_max_shape_size).
+inline constexpr int64_t k_broad_phase_coordinate_limit = int64_t{1} << 60;
+
+/// The box every broad phase works on for a shape's stored AABB: each
+/// coordinate clamped into ±k_broad_phase_coordinate_limit, then lower and
+/// upper swapped on an axis where lower > upper. For a box the world computed
+/// (ordered, in range) it returns the box unchanged, so results do not move;
+/// for a corrupt one (an inverted or huge box, say from a crafted snapshot
+/// that bypassed restore's checks) every broad phase still sees the same
+/// ordered, in-range box, so none reads out of bounds, overflows or hangs, and
+/// all four still report the same pairs.
+AABB broad_phase_sanitize_box(AABB box);
 
 // Shared by the implementations (broad_phase.cpp).
 

@@ -63,6 +63,12 @@ ShapeId make_shape_id(const World& world, int32_t index);
 /// compute_*_aabb).
 AABB compute_shape_aabb(const ShapeGeometry& geometry, Transform transform);
 
+/// True when every point of the geometry, grown by its radius, lies within
+/// ±k_max_shape_size of the body origin on each axis (and a polygon has 3 to
+/// k_max_polygon_vertices vertices): the check create_*_shape applies, for
+/// snapshot restore.
+bool shape_geometry_within_reach(const ShapeGeometry& geometry);
+
 /// Mass data of any geometry at a density (segments and chain segments: zero).
 MassData compute_shape_mass(const ShapeGeometry& geometry, Q32 density);
 

@@ -267,6 +267,11 @@ T get_shape(ShapeId id, T fallback, Get get) {
 
 }  // namespace
 
+bool shape_geometry_within_reach(const ShapeGeometry& geometry) {
+  Status ignored;
+  return check_reach(geometry, "", &ignored);
+}
+
 // ---------------------------------------------------------------------------
 // Internal helpers (shape.h)
 // ---------------------------------------------------------------------------

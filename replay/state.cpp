@@ -32,6 +32,8 @@
 #include "physics/contact.h"
 #include "physics/events.h"
 #include "physics/id_pool.h"
+#include "physics/island.h"
+#include "physics/limits.h"
 #include "physics/shape.h"
 #include "physics/world.h"
 #include "replay/bytes.h"
@@ -42,30 +44,22 @@ namespace {
 constexpr uint32_t k_state_kind_full = 0;
 
 /// Everything restore replaces, decoded and validated before it touches a
-/// world. Field names match World's so the visit templates serve both.
-struct WorldImage {
-  WorldDef def;
-  uint64_t step_count = 0;
-  int32_t last_solver_body_count = 0;
-  IdPool body_pool;
-  std::vector<Body> bodies;
-  std::vector<BodySim> body_sims;
-  IdPool shape_pool;
-  std::vector<Shape> shapes;
-  std::vector<ShapeGeometry> shape_geometries;
-  std::vector<Contact> contacts;
-  std::vector<PairRecord> touching;
-  std::vector<PairRecord> sensor_overlaps;
-  // Reader only: byte offset of each record, for cross-reference messages.
+/// world. It is a World (never registered, never stepped) so the physics
+/// functions that derive cached values (shape bounds, body mass, extents) can
+/// run on the image itself for the consistency checks; restore then swaps its
+/// vectors into the target world.
+struct WorldImage : World {
+  // Reader only: byte offset of each record, for messages.
   std::vector<size_t> body_offsets;   // by body index
   std::vector<size_t> shape_offsets;  // by shape index
   std::vector<size_t> contact_offsets;
 };
 
 std::vector<PairRecord>& touching_of(World& w) { return w.events.touching; }
-std::vector<PairRecord>& touching_of(WorldImage& w) { return w.touching; }
 std::vector<PairRecord>& sensors_of(World& w) { return w.events.sensor_overlaps; }
-std::vector<PairRecord>& sensors_of(WorldImage& w) { return w.sensor_overlaps; }
+
+/// The smallest encoded contact record (no points), for read_count.
+size_t min_contact_record_bytes();
 
 // ---------------------------------------------------------------------------
 // Field names that carry an index (built once)
@@ -482,7 +476,7 @@ void visit_world(V& v, W& w, ByteReader* reader) {
   uint32_t contact_count = static_cast<uint32_t>(w.contacts.size());
   if constexpr (V::k_reading) {
     reader->set_context("contacts");
-    contact_count = reader->read_count("count", 16);
+    contact_count = reader->read_count("count", min_contact_record_bytes());
     if (!reader->ok()) return;
     w.contacts.assign(contact_count, Contact{});
     w.contact_offsets.assign(contact_count, 0);
@@ -570,6 +564,8 @@ const RecordSizes& record_sizes() {
   return sizes;
 }
 
+size_t min_contact_record_bytes() { return record_sizes().contact; }
+
 size_t shape_record_size(const Shape& s, const ShapeGeometry& g) {
   const RecordSizes& rs = record_sizes();
   const size_t t = static_cast<size_t>(s.type);
@@ -620,6 +616,493 @@ Status resolve_for_state(WorldId id, const char* function, bool mutating, World*
 // ---------------------------------------------------------------------------
 // Decoding and validation
 // ---------------------------------------------------------------------------
+
+// ---------------------------------------------------------------------------
+// Range and consistency validation (after the structural checks)
+// ---------------------------------------------------------------------------
+// Every restored value is held to the limits the public API enforces when the
+// value enters a world (limits.h, tandem.h), widened only where a legal
+// simulation can carry a value past the entry limit (speeds after a contact
+// solve, say), and every cached value that the engine derives from others is
+// recomputed here and must match bit for bit: shape bounds from geometry and
+// pose, body mass, inertia, their inverses and the centre of mass from the
+// shapes, the world centre from the pose, the continuous-collision extents.
+// So an image can only hold states the API could have produced (or states
+// as safe), and no build's unchecked in-range arithmetic (contact_solver.cpp)
+// ever sees a value that would make it wrap where another build saturates.
+
+/// Finds the byte offset of a named field inside one record by walking the
+/// record's visit function in counting mode.
+struct OffsetVisitor {
+  static constexpr bool k_reading = false;
+  ByteWriter* w;
+  const char* target;
+  size_t found = SIZE_MAX;
+  void mark(const char* name) {
+    if (found == SIZE_MAX && std::strcmp(name, target) == 0) found = w->size();
+  }
+  void record(const char*, int64_t, int64_t = -1, uint32_t = 0) {}
+  void tag(const char*) { w->bytes(reinterpret_cast<const uint8_t*>("TAGS"), 4); }
+  void q32(const char* n, Q32& v) { mark(n); w->q32(v); }
+  void vec2(const char* nx, const char* ny, Vec2& v) {
+    mark(nx);
+    w->q32(v.x);
+    mark(ny);
+    w->q32(v.y);
+  }
+  void i32(const char* n, int32_t& v) { mark(n); w->i32(v); }
+  void u32(const char* n, uint32_t& v) { mark(n); w->u32(v); }
+  void count(const char* n, uint32_t& v) { mark(n); w->u32(v); }
+  void u16(const char* n, uint16_t& v) { mark(n); w->u16(v); }
+  void u64(const char* n, uint64_t& v) { mark(n); w->u64(v); }
+  void boolean(const char* n, bool& v) { mark(n); w->boolean(v); }
+  template <typename E>
+  void enum8(const char* n, E& v, int32_t) {
+    mark(n);
+    w->u8(static_cast<uint8_t>(static_cast<int32_t>(v)));
+  }
+  void ranged_i32(const char* n, int32_t& v, int32_t, int32_t) { mark(n); w->i32(v); }
+  bool ok() const { return true; }
+};
+
+template <typename F>
+size_t field_offset_in(const char* field, F&& visit) {
+  ByteWriter counter(nullptr, 0);
+  OffsetVisitor v{&counter, field};
+  visit(v);
+  return v.found == SIZE_MAX ? 0 : v.found;
+}
+
+/// Largest |linear velocity| component restored for a moving body, m/s: the
+/// entry limit leaves room for what one contact solve can add after the
+/// sub-step's speed clamp (the next step clamps again).
+constexpr Q32 k_max_restored_linear_speed = k_max_linear_speed * 4;
+/// |ω| always accepted for a moving body, rad/s; above it the rim speed
+/// |ω|·max_extent must stay within k_max_restored_linear_speed (small bodies
+/// legitimately spin fast after a glancing contact).
+constexpr Q32 k_max_restored_angular_speed = k_max_angular_speed * 4;
+/// Largest |stored contact impulse| per point, N·s: the momentum of the
+/// heaviest body at the restored speed limit.
+constexpr Q32 k_max_restored_impulse = Q32::from_raw(int64_t{400000000} << 32);
+/// Largest velocity change (m/s, and rim speed change m/s) that a body's
+/// stored contact impulses may apply in the warm start, summed over its
+/// contacts: 2^27, 16× inside the Q32.32 range.
+constexpr Q32 k_max_warm_start_velocity_change = Q32::from_raw(int64_t{1} << 59);
+/// Tolerance on |rotation| and |normal| = 1: 2^-16.
+constexpr int64_t k_unit_tolerance_raw = int64_t{1} << 16;
+/// Largest |coordinate| of a stored body or contact point, m: a body that
+/// left the bounds (then disabled) may stand a little outside them.
+constexpr Q32 k_max_restored_coordinate = k_max_world_coordinate * 2;
+/// Largest |anchor| or |separation| of a stored contact point, m.
+constexpr Q32 k_max_restored_anchor = k_max_shape_size * 4;
+
+/// A record being checked: names it and finds a field's byte offset, both
+/// only when a check fails (the success path allocates nothing and walks no
+/// visitor, so a warm rollback's restore stays cheap).
+struct RecordRef {
+  enum Kind { world, body, shape, contact } kind;
+  size_t index = 0;
+  const WorldImage* img = nullptr;
+
+  std::string who() const {
+    switch (kind) {
+      case world: return "world";
+      case body: return "body " + std::to_string(index);
+      case shape: return "shape " + std::to_string(index);
+      case contact: {
+        const Contact& c = img->contacts[index];
+        return "contact " + std::to_string(index) + " (shapes " + std::to_string(c.shape_a) + ", " +
+               std::to_string(c.shape_b) + ")";
+      }
+    }
+    return "?";
+  }
+  size_t offset(const char* field) const {
+    switch (kind) {
+      case world: {
+        WorldDef d = img->def;
+        return 16 + field_offset_in(field, [&](OffsetVisitor& v) { visit_world_def(v, d); });
+      }
+      case body: {
+        Body b = img->bodies[index];
+        BodySim s = img->body_sims[index];
+        return img->body_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_body(v, b, s); });
+      }
+      case shape: {
+        Shape s = img->shapes[index];
+        ShapeGeometry g = img->shape_geometries[index];
+        return img->shape_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_shape(v, s, g); });
+      }
+      case contact: {
+        Contact c = img->contacts[index];
+        return img->contact_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_contact(v, c); });
+      }
+    }
+    return 0;
+  }
+};
+
+struct ImageChecker {
+  WorldImage& img;
+  const char* fn;
+  Status status;
+
+  bool failed() const { return !status.ok(); }
+  /// Refuses at `field` of `r` (offset_field: where the offset points, when
+  /// the message names a group of fields).
+  void refuse(const RecordRef& r, const char* field, const std::string& what, const char* offset_field = nullptr) {
+    if (failed()) return;
+    status = make_status(StatusCode::invalid_argument, std::string(fn) + ": offset " +
+                                                           std::to_string(r.offset(offset_field ? offset_field : field)) +
+                                                           ": " + r.who() + " " + field + " " + what);
+  }
+  static std::string text(Q32 v, const char* unit) { return to_string(v) + (*unit ? std::string(" ") + unit : ""); }
+  /// lo ≤ v ≤ hi (lo_open: lo < v).
+  void range(const RecordRef& r, const char* field, Q32 v, Q32 lo, Q32 hi, const char* unit, bool lo_open = false) {
+    if ((lo_open ? lo < v : lo <= v) && v <= hi) return;
+    refuse(r, field,
+           text(v, unit) + " is outside " + (lo_open ? "(" : "[") + to_string(lo) + ", " + to_string(hi) + "]" +
+               (*unit ? std::string(" ") + unit : ""));
+  }
+  void equal(const RecordRef& r, const char* field, Q32 v, Q32 expected, const char* unit, const char* from) {
+    if (v == expected) return;
+    refuse(r, field,
+           text(v, unit) + " does not match the value derived from " + from + " (" + text(expected, unit) +
+               "); restore refuses inconsistent cached state");
+  }
+  /// (x, y) with each component in [−1 − 2^-16, 1 + 2^-16] and x² + y²
+  /// within 2^-16 of 1 (normalisation rounds to a few raw units either way).
+  void unit(const RecordRef& r, const char* fx, const char* fy, Vec2 v) {
+    const Q32 lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance_raw);
+    range(r, fx, v.x, -lim, lim, "");
+    range(r, fy, v.y, -lim, lim, "");
+    if (failed()) return;
+    const Q32 n = v.x * v.x + v.y * v.y;  // components ≤ 1 + 2^-16: no saturation
+    if ((n - Q32::one()).raw > k_unit_tolerance_raw || (Q32::one() - n).raw > k_unit_tolerance_raw) {
+      refuse(r, fx, "(" + to_string(v.x) + ", " + to_string(v.y) + ") has squared length " + to_string(n) +
+                        ", expected 1 ± 2^-16 (a unit vector)");
+    }
+  }
+};
+
+void check_world(ImageChecker& c) {
+  const WorldDef& d = c.img.def;
+  const RecordRef r{RecordRef::world, 0, &c.img};
+  c.range(r, "gravity.x", d.gravity.x, -k_max_gravity, k_max_gravity, "m/s²");
+  c.range(r, "gravity.y", d.gravity.y, -k_max_gravity, k_max_gravity, "m/s²");
+  c.range(r, "contact_hertz", d.contact_hertz, Q32::zero(), k_max_hertz, "Hz", true);
+  c.range(r, "contact_damping_ratio", d.contact_damping_ratio, Q32::zero(), k_max_damping_ratio, "");
+  c.range(r, "max_linear_speed", d.max_linear_speed, Q32::zero(), k_max_linear_speed, "m/s", true);
+  if (c.failed()) return;
+  c.range(r, "max_contact_push_speed", d.max_contact_push_speed, Q32::zero(), d.max_linear_speed, "m/s");
+  c.range(r, "joint_hertz", d.joint_hertz, Q32::zero(), k_max_hertz, "Hz", true);
+  c.range(r, "joint_damping_ratio", d.joint_damping_ratio, Q32::zero(), k_max_damping_ratio, "");
+  c.range(r, "restitution_threshold", d.restitution_threshold, Q32::zero(), d.max_linear_speed, "m/s");
+  c.range(r, "hit_event_threshold", d.hit_event_threshold, Q32::zero(), d.max_linear_speed, "m/s");
+  const Q32 m = k_max_world_coordinate;
+  c.range(r, "bounds.lower.x", d.bounds.lower.x, -m, m, "m");
+  c.range(r, "bounds.lower.y", d.bounds.lower.y, -m, m, "m");
+  c.range(r, "bounds.upper.x", d.bounds.upper.x, -m, m, "m");
+  c.range(r, "bounds.upper.y", d.bounds.upper.y, -m, m, "m");
+  if (!c.failed() && !(d.bounds.lower.x < d.bounds.upper.x && d.bounds.lower.y < d.bounds.upper.y)) {
+    c.refuse(r, "bounds", "must have lower < upper on both axes", "bounds.lower.x");
+  }
+}
+
+/// Per-thread scratch of the checks (grown once, reused by warm restores).
+struct CheckScratch {
+  std::vector<MassData> masses;
+  std::vector<Q32> impulse_sum;
+};
+
+CheckScratch& check_scratch() {
+  thread_local CheckScratch scratch;
+  return scratch;
+}
+
+/// Shape fields that need no body: materials, geometry reach, normals.
+void check_shapes(ImageChecker& c) {
+  WorldImage& img = c.img;
+  const int32_t shape_cap = static_cast<int32_t>(img.shapes.size());
+  for (size_t i = 0; i < img.shapes.size() && !c.failed(); ++i) {
+    if (img.shape_pool.alive[i] == 0) continue;
+    const Shape& shape = img.shapes[i];
+    const ShapeGeometry& g = img.shape_geometries[i];
+    const RecordRef r{RecordRef::shape, i, &img};
+    c.range(r, "friction", shape.friction, Q32::zero(), k_max_friction, "");
+    c.range(r, "restitution", shape.restitution, Q32::zero(), Q32::one(), "");
+    c.range(r, "density", shape.density, Q32::zero(), k_max_density, "kg/m²");
+    // Reach: every point, grown by the radius, within ±k_max_shape_size of
+    // the body origin on each axis (create_*_shape's check), named by field.
+    struct Point {
+      const char* x;
+      const char* y;
+      Vec2 p;
+    };
+    std::array<Point, k_max_polygon_vertices + 1> points{};
+    int32_t n = 0;
+    const char* radius_name = nullptr;
+    Q32 radius;
+    switch (g.type) {
+      case ShapeType::circle:
+        points[0] = {"circle.center.x", "circle.center.y", g.circle.center};
+        n = 1;
+        radius_name = "circle.radius";
+        radius = g.circle.radius;
+        break;
+      case ShapeType::capsule:
+        points[0] = {"capsule.center1.x", "capsule.center1.y", g.capsule.center1};
+        points[1] = {"capsule.center2.x", "capsule.center2.y", g.capsule.center2};
+        n = 2;
+        radius_name = "capsule.radius";
+        radius = g.capsule.radius;
+        break;
+      case ShapeType::segment:
+        points[0] = {"segment.point1.x", "segment.point1.y", g.segment.point1};
+        points[1] = {"segment.point2.x", "segment.point2.y", g.segment.point2};
+        n = 2;
+        break;
+      case ShapeType::polygon:
+        for (int32_t k = 0; k < g.polygon.count; ++k) {
+          points[static_cast<size_t>(k)] = {polygon_name(k, 0), polygon_name(k, 1),
+                                            g.polygon.vertices[static_cast<size_t>(k)]};
+        }
+        points[static_cast<size_t>(g.polygon.count)] = {"polygon.centroid.x", "polygon.centroid.y",
+                                                        g.polygon.centroid};
+        n = g.polygon.count + 1;
+        radius_name = "polygon.radius";
+        radius = g.polygon.radius;
+        break;
+      case ShapeType::chain_segment:
+        points[0] = {"chain.ghost1.x", "chain.ghost1.y", g.chain_segment.ghost1};
+        points[1] = {"chain.point1.x", "chain.point1.y", g.chain_segment.segment.point1};
+        points[2] = {"chain.point2.x", "chain.point2.y", g.chain_segment.segment.point2};
+        points[3] = {"chain.ghost2.x", "chain.ghost2.y", g.chain_segment.ghost2};
+        n = 4;
+        break;
+      case ShapeType::count: break;
+    }
+    const Q32 m = k_max_shape_size;
+    if (radius_name != nullptr) c.range(r, radius_name, radius, Q32::zero(), m, "m");
+    if (c.failed()) return;
+    const Q32 reach = m - radius;  // radius ∈ [0, m]: exact
+    for (int32_t k = 0; k < n && !c.failed(); ++k) {
+      const Point& pt = points[static_cast<size_t>(k)];
+      c.range(r, pt.x, pt.p.x, -reach, reach, "m");
+      c.range(r, pt.y, pt.p.y, -reach, reach, "m");
+    }
+    if (c.failed()) return;
+    if (!shape_geometry_within_reach(g)) {  // the API's own check, as a backstop
+      c.refuse(r, "geometry",
+               "reaches farther than k_max_shape_size " + to_string(k_max_shape_size) +
+                   " m from the body origin (on an axis)",
+               "type");
+      return;
+    }
+    if (g.type == ShapeType::polygon) {
+      for (int32_t k = 0; k < g.polygon.count && !c.failed(); ++k) {
+        c.unit(r, polygon_name(k, 2), polygon_name(k, 3), g.polygon.normals[static_cast<size_t>(k)]);
+      }
+    }
+    if (g.type == ShapeType::chain_segment) {
+      const int32_t id = g.chain_segment.chain_id;
+      if (!c.failed() && (id < -1 || id >= shape_cap)) {
+        c.refuse(r, "chain.chain_id", std::to_string(id) + " is outside [-1, " + std::to_string(shape_cap - 1) + "]");
+      }
+    }
+  }
+}
+
+void check_bodies(ImageChecker& c) {
+  WorldImage& img = c.img;
+  std::vector<MassData>& masses = check_scratch().masses;
+  static const std::string k_unnamed;  // messages name the body themselves
+  for (size_t b = 0; b < img.bodies.size() && !c.failed(); ++b) {
+    if (img.body_pool.alive[b] == 0) continue;
+    const Body& body = img.bodies[b];
+    const BodySim& sim = img.body_sims[b];
+    const RecordRef r{RecordRef::body, b, &img};
+    const bool moving = body.type != BodyType::static_body;
+    // Pose first: the derived values below depend on it.
+    const Q32 wmax = k_max_restored_coordinate;
+    c.range(r, "position.x", sim.transform.p.x, -wmax, wmax, "m");
+    c.range(r, "position.y", sim.transform.p.y, -wmax, wmax, "m");
+    c.unit(r, "rotation.c", "rotation.s", Vec2{sim.transform.q.c, sim.transform.q.s});
+    c.range(r, "sleep_time", body.sleep_time, Q32::zero(), k_time_to_sleep, "s");
+    c.range(r, "linear_damping", sim.linear_damping, Q32::zero(), k_max_damping, "1/s");
+    c.range(r, "angular_damping", sim.angular_damping, Q32::zero(), k_max_damping, "1/s");
+    c.range(r, "gravity_scale", sim.gravity_scale, -k_max_gravity_scale, k_max_gravity_scale, "");
+    c.range(r, "force.x", sim.force.x, -k_max_force, k_max_force, "N");
+    c.range(r, "force.y", sim.force.y, -k_max_force, k_max_force, "N");
+    c.range(r, "torque", sim.torque, -k_max_torque, k_max_torque, "N·m");
+    const Q32 vmax = moving ? k_max_restored_linear_speed : Q32::zero();
+    c.range(r, "linear_velocity.x", sim.linear_velocity.x, -vmax, vmax, "m/s");
+    c.range(r, "linear_velocity.y", sim.linear_velocity.y, -vmax, vmax, "m/s");
+    if (c.failed()) return;
+    // Mass data, derived from the shapes exactly as create and update do
+    // (gather_shape_masses + combine_masses, without building names).
+    BodyMass m{};
+    if (body.type == BodyType::dynamic_body) {
+      masses.clear();
+      Status st;
+      for (int32_t s = body.head_shape; s != k_null_index && st.ok();
+           s = img.shapes[static_cast<size_t>(s)].next_shape) {
+        MassData md{};
+        st = shape_mass_for_body(img.shape_geometries[static_cast<size_t>(s)], img.shapes[static_cast<size_t>(s)].density,
+                                 k_unnamed, &md);
+        if (st.ok() && md.mass > Q32::zero()) masses.push_back(md);
+      }
+      if (st.ok()) {
+        st = combine_masses(masses.data(), static_cast<int32_t>(masses.size()), body.type, body.fixed_rotation,
+                            k_unnamed, &m);
+      }
+      if (!st.ok()) {
+        c.refuse(r, "mass", "cannot be derived from its shapes (" + st.message + ")");
+        return;
+      }
+    }
+    c.equal(r, "mass", body.mass, m.mass, "kg", "its shapes");
+    c.equal(r, "rotational_inertia", body.rotational_inertia, m.rotational_inertia, "kg·m²", "its shapes");
+    c.equal(r, "inv_mass", sim.inv_mass, m.inv_mass, "1/kg", "its shapes");
+    c.equal(r, "inv_inertia", sim.inv_inertia, m.inv_inertia, "1/(kg·m²)", "its shapes");
+    c.equal(r, "local_center.x", sim.local_center.x, m.local_center.x, "m", "its shapes");
+    c.equal(r, "local_center.y", sim.local_center.y, m.local_center.y, "m", "its shapes");
+    if (c.failed()) return;
+    const Vec2 center = transform_point(sim.transform, sim.local_center);
+    c.equal(r, "center.x", sim.center.x, center.x, "m", "its pose and local centre");
+    c.equal(r, "center.y", sim.center.y, center.y, "m", "its pose and local centre");
+    Q32 min_extent, max_extent;
+    compute_body_extents(img, static_cast<int32_t>(b), sim.local_center, &min_extent, &max_extent);
+    c.equal(r, "min_extent", body.min_extent, min_extent, "m", "its shapes");
+    c.equal(r, "max_extent", body.max_extent, max_extent, "m", "its shapes");
+    if (c.failed()) return;
+    const Q32 w = sim.angular_velocity;
+    if (!moving) {
+      c.range(r, "angular_velocity", w, Q32::zero(), Q32::zero(), "rad/s");
+    } else if (abs(w) > k_max_restored_angular_speed &&
+               mul_quiet(abs(w), max(max_extent, k_min_shape_size)) > k_max_restored_linear_speed) {
+      c.refuse(r, "angular_velocity",
+               to_string(w) + " rad/s is outside [" + to_string(-k_max_restored_angular_speed) + ", " +
+                   to_string(k_max_restored_angular_speed) + "] rad/s and its rim speed |angular_velocity| · " +
+                   "max_extent (" + to_string(max_extent) + " m) exceeds " + to_string(k_max_restored_linear_speed) +
+                   " m/s");
+    }
+  }
+}
+
+/// Shape bounds, after the bodies' poses have been checked.
+void check_shape_bounds(ImageChecker& c) {
+  WorldImage& img = c.img;
+  for (size_t i = 0; i < img.shapes.size() && !c.failed(); ++i) {
+    if (img.shape_pool.alive[i] == 0) continue;
+    const Shape& shape = img.shapes[i];
+    const RecordRef r{RecordRef::shape, i, &img};
+    // Derived from the geometry and the body's pose (finalize, teleports and
+    // creation all store exactly this).
+    const AABB box = compute_shape_aabb(img.shape_geometries[i],
+                                        img.body_sims[static_cast<size_t>(shape.body_index)].transform);
+    const char* from = "its geometry and body pose";
+    c.equal(r, "aabb.lower.x", shape.aabb.lower.x, box.lower.x, "m", from);
+    c.equal(r, "aabb.lower.y", shape.aabb.lower.y, box.lower.y, "m", from);
+    c.equal(r, "aabb.upper.x", shape.aabb.upper.x, box.upper.x, "m", from);
+    c.equal(r, "aabb.upper.y", shape.aabb.upper.y, box.upper.y, "m", from);
+  }
+}
+
+void check_contacts(ImageChecker& c) {
+  WorldImage& img = c.img;
+  // Per body: the sum of |stored impulse| over its contact points, N·s.
+  std::vector<Q32>& impulse_sum = check_scratch().impulse_sum;
+  impulse_sum.assign(img.bodies.size(), Q32::zero());
+  const Q32 unit_lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance_raw);
+  for (size_t i = 0; i < img.contacts.size() && !c.failed(); ++i) {
+    const Contact& ct = img.contacts[i];
+    const RecordRef r{RecordRef::contact, i, &img};
+    // A contact whose shapes are alive with the stored generations is kept by
+    // the next update: its bodies must be those shapes' bodies.
+    const auto current = [&](int32_t s, uint32_t generation) {
+      return img.shape_pool.alive[static_cast<size_t>(s)] != 0 &&
+             img.shape_pool.generations[static_cast<size_t>(s)] == generation;
+    };
+    if (current(ct.shape_a, ct.generation_a) && current(ct.shape_b, ct.generation_b)) {
+      const int32_t ba = img.shapes[static_cast<size_t>(ct.shape_a)].body_index;
+      const int32_t bb = img.shapes[static_cast<size_t>(ct.shape_b)].body_index;
+      if (ct.body_a != ba) {
+        c.refuse(r, "body_a", std::to_string(ct.body_a) + " is not shape_a's body " + std::to_string(ba));
+      }
+      if (ct.body_b != bb) {
+        c.refuse(r, "body_b", std::to_string(ct.body_b) + " is not shape_b's body " + std::to_string(bb));
+      }
+    }
+    const bool touching = ct.manifold.point_count > 0;
+    const uint32_t flags = touching ? k_contact_touching : 0u;
+    if (ct.flags != flags) {
+      c.refuse(r, "flags",
+               std::to_string(ct.flags) + " is not " + std::to_string(flags) +
+                   " (the touching bit set exactly when the manifold has points)");
+    }
+    c.range(r, "friction", ct.friction, Q32::zero(), k_max_friction, "");
+    c.range(r, "restitution", ct.restitution, Q32::zero(), Q32::one(), "");
+    if (touching) {
+      c.unit(r, "normal.x", "normal.y", ct.manifold.normal);
+    } else {
+      c.range(r, "normal.x", ct.manifold.normal.x, -unit_lim, unit_lim, "");
+      c.range(r, "normal.y", ct.manifold.normal.y, -unit_lim, unit_lim, "");
+    }
+    for (int32_t k = 0; k < ct.manifold.point_count && !c.failed(); ++k) {
+      const ManifoldPoint& p = ct.manifold.points[static_cast<size_t>(k)];
+      const Q32 wmax = k_max_restored_coordinate;
+      const Q32 amax = k_max_restored_anchor;
+      c.range(r, point_name(k, 0), p.point.x, -wmax, wmax, "m");
+      c.range(r, point_name(k, 1), p.point.y, -wmax, wmax, "m");
+      c.range(r, point_name(k, 2), p.anchor_a.x, -amax, amax, "m");
+      c.range(r, point_name(k, 3), p.anchor_a.y, -amax, amax, "m");
+      c.range(r, point_name(k, 4), p.anchor_b.x, -amax, amax, "m");
+      c.range(r, point_name(k, 5), p.anchor_b.y, -amax, amax, "m");
+      c.range(r, point_name(k, 6), p.separation, -amax, amax, "m");
+      const Q32 jmax = k_max_restored_impulse;
+      const Q32 jn = ct.normal_impulse[static_cast<size_t>(k)];
+      const Q32 jt = ct.tangent_impulse[static_cast<size_t>(k)];
+      c.range(r, point_name(k, 8), jn, -jmax, jmax, "N·s");
+      c.range(r, point_name(k, 9), jt, -jmax, jmax, "N·s");
+      if (c.failed()) return;
+      // What the warm start applies to each body, summed over its contacts
+      // (checked after each impulse, so the one that crosses is named).
+      for (int32_t which = 0; which < 2; ++which) {
+        const Q32 j = abs(which == 0 ? jn : jt);
+        const char* field = point_name(k, which == 0 ? 8 : 9);
+        for (const int32_t b : {ct.body_a, ct.body_b}) {
+          const size_t bi = static_cast<size_t>(b);
+          if (img.body_pool.alive[bi] == 0) continue;
+          Q32& sum = impulse_sum[bi];
+          sum = add_quiet(sum, j);
+          const BodySim& sim = img.body_sims[bi];
+          const Q32 lever = add_quiet(img.bodies[bi].max_extent, k_speculative_distance * 2);
+          const Q32 dv = mul_quiet(sum, sim.inv_mass);
+          const Q32 dw = mul_quiet(mul_quiet(sum, sim.inv_inertia), lever);
+          if (dv > k_max_warm_start_velocity_change || dw > k_max_warm_start_velocity_change) {
+            c.refuse(r, field,
+                     "brings the stored impulses on body " + std::to_string(b) + " to " + to_string(sum) +
+                         " N·s, a warm-start velocity change of " + to_string(max(dv, dw)) + " m/s, above " +
+                         to_string(k_max_warm_start_velocity_change) + " m/s");
+            return;
+          }
+        }
+      }
+    }
+  }
+}
+
+/// Range and consistency checks of a structurally valid image (see above).
+Status validate_image_values(WorldImage* img, const char* function) {
+  ImageChecker c{*img, function, Status{}};
+  check_world(c);
+  if (!c.failed()) check_shapes(c);
+  if (!c.failed()) check_bodies(c);
+  if (!c.failed()) check_shape_bounds(c);
+  if (!c.failed()) check_contacts(c);
+  return c.status;
+}
 
 /// Decodes and validates a full image into *img. Returns an error Status
 /// (invalid_argument, "<function>: offset N: expected ...").
@@ -755,9 +1238,11 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
     }
     return Status{};
   };
-  Status s = check_pairs(img->touching, "touching pair");
+  Status s = check_pairs(img->events.touching, "touching pair");
   if (!s.ok()) return s;
-  return check_pairs(img->sensor_overlaps, "sensor overlap");
+  s = check_pairs(img->events.sensor_overlaps, "sensor overlap");
+  if (!s.ok()) return s;
+  return validate_image_values(img, function);
 }
 
 /// Replaces the world's state with a validated image. Vectors are swapped,
@@ -778,8 +1263,8 @@ void commit_image(World* w, WorldImage& img) {
   std::swap(w->contacts, img.contacts);
   w->contact_scratch.clear();
   EventState& e = w->events;
-  std::swap(e.touching, img.touching);
-  std::swap(e.sensor_overlaps, img.sensor_overlaps);
+  std::swap(e.touching, img.events.touching);
+  std::swap(e.sensor_overlaps, img.events.sensor_overlaps);
   e.touching_next.clear();
   e.sensor_next.clear();
   e.hit_candidates.clear();
@@ -938,6 +1423,55 @@ Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out) {
   out->records.clear();
   DescribeVisitor v{out};
   visit_world(v, img, nullptr);
+  return s;
+}
+
+Status locate_state_field(const uint8_t* data, size_t size, const std::string& kind, int64_t index,
+                          const std::string& field, size_t* out_offset) {
+  WorldImage img;
+  Status s = decode_image(data, size, "locate_state_field", &img, nullptr);
+  if (!s.ok()) return s;
+  const auto missing = [&](const std::string& what) {
+    return make_status(StatusCode::invalid_argument, "locate_state_field: " + what);
+  };
+  const char* f = field.c_str();
+  size_t base = 0;
+  size_t found = SIZE_MAX;
+  const auto find = [&](auto&& visit) {
+    ByteWriter counter(nullptr, 0);
+    OffsetVisitor v{&counter, f};
+    visit(v);
+    found = v.found;
+  };
+  if (kind == "world") {
+    base = 16;
+    find([&](OffsetVisitor& v) { visit_world_def(v, img.def); });
+  } else if (kind == "body" || kind == "shape") {
+    const bool body = kind == "body";
+    const size_t cap = body ? img.bodies.size() : img.shapes.size();
+    if (index < 0 || static_cast<size_t>(index) >= cap ||
+        (body ? img.body_pool : img.shape_pool).alive[static_cast<size_t>(index)] == 0) {
+      return missing(kind + " " + std::to_string(index) + " is not alive in the image");
+    }
+    const size_t i = static_cast<size_t>(index);
+    if (body) {
+      base = img.body_offsets[i];
+      find([&](OffsetVisitor& v) { visit_body(v, img.bodies[i], img.body_sims[i]); });
+    } else {
+      base = img.shape_offsets[i];
+      find([&](OffsetVisitor& v) { visit_shape(v, img.shapes[i], img.shape_geometries[i]); });
+    }
+  } else if (kind == "contact") {
+    if (index < 0 || static_cast<size_t>(index) >= img.contacts.size()) {
+      return missing("contact " + std::to_string(index) + " is not in the image");
+    }
+    base = img.contact_offsets[static_cast<size_t>(index)];
+    find([&](OffsetVisitor& v) { visit_contact(v, img.contacts[static_cast<size_t>(index)]); });
+  } else {
+    return missing("unknown record kind \"" + kind + "\" (world, body, shape or contact)");
+  }
+  if (found == SIZE_MAX) return missing(kind + " has no field \"" + field + "\"");
+  *out_offset = base + found;
   return s;
 }
 

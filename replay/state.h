@@ -40,14 +40,27 @@
 // encoding, size, decoding and the named-field decoding used by diffs), so
 // the four can never disagree.
 //
-// RESTORE decodes the whole image into scratch, validates it (ranges, enum
-// values, index ranges, shape lists consistent with bodies, contacts sorted,
-// no raw INT64_MIN, non-degenerate radii and segments, nothing left over)
-// and only then replaces the world's state, so a refused image leaves the
-// world untouched. It checks structure, not physical plausibility: an image
-// edited to hold, say, a non-unit rotation or an absurd mass is accepted and
-// simulated as it is (the saturation rules of fixed/ then apply). Handles stay valid: indices, generations
-// and alive flags are those of the snapshot.
+// RESTORE decodes the whole image into scratch, validates it and only then
+// replaces the world's state, so a refused image leaves the world untouched.
+// Structure: enum values, index ranges, shape lists consistent with bodies,
+// contacts sorted, no raw INT64_MIN, non-degenerate radii and segments,
+// nothing left over; every count is checked against the bytes left before
+// anything is allocated for it. Values: every field against the limits the
+// API enforces when the value enters a world (limits.h, tandem.h: world
+// settings, positions, speeds, damping, forces, materials, geometry reach,
+// sleep timers, impulses), widened only where a legal step carries a value
+// past its entry limit (speeds after a contact solve: ×4; positions of a body
+// that left the bounds: ±2·k_max_world_coordinate); rotations and normals
+// unit within 2^-16. Derived values: shape bounds, body mass, inertia, their
+// inverses, the centre of mass (local and world) and the continuous-collision
+// extents are recomputed from the image and must match bit for bit, so a
+// crafted image cannot feed the broad phase an inverted box or the solver a
+// mass its shapes do not have. A refusal names the byte offset, the record
+// ("body 12", "shape 3", "contact 5 (shapes 2, 9)", "world"), the field, its
+// value and the allowed range. Within these limits no arithmetic path wraps
+// or saturates, so every build (x86-64 release, portable 128-bit, debug)
+// computes the same bits from an accepted image. Handles stay valid: indices,
+// generations and alive flags are those of the snapshot.
 //
 // HASH: XXH3-64 (seed 0) of the canonical encoding. Per-body hashes cover one
 // body's record followed by its shapes' records (the same bytes as in the
@@ -172,6 +185,16 @@ struct DecodedState {
 /// Decodes and validates a state image (the same checks as world_restore)
 /// into named records. Errors name the byte offset and what was expected.
 Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out);
+
+/// The byte offset of one field in a valid state image: `kind` is "world",
+/// "body", "shape" or "contact"; `index` the body or shape index, or the
+/// contact's position in the contact list (ignored for "world"); `field` a
+/// name as decode_world_state reports it ("linear_velocity.x",
+/// "aabb.lower.x", "points[0].normal_impulse"). For tools that patch or
+/// explain images (and tests that craft them). Refuses an invalid image (as
+/// decode_world_state) and an unknown record or field.
+Status locate_state_field(const uint8_t* data, size_t size, const std::string& kind, int64_t index,
+                          const std::string& field, size_t* out_offset);
 
 /// The first difference between two decoded states, in canonical order.
 struct StateDifference {

@@ -13,6 +13,7 @@
 
 #include "physics/tandem.h"
 #include "physics_test_support.h"
+#include "tests/readme_quote.h"
 
 using namespace tandem;
 using namespace tandem::test_support;
@@ -149,6 +150,9 @@ TEST_CASE("a ball with restitution 1 keeps its energy for 5 minutes", "[physics]
   CHECK(lo > 0.98L);
   CHECK(hi < 1.02L);
   CHECK(bounces > 100);
+  // The README quotes the end ratio to 4 decimals and the range to 3.
+  readme::check_quotes("ends at " + readme::fixed(end, 4) + " of its starting energy (range " + readme::fixed(lo, 3) +
+                       "–" + readme::fixed(hi, 3) + ")");
 }
 
 TEST_CASE("head-on elastic collision of equal circles", "[physics][solver]") {
@@ -172,8 +176,19 @@ TEST_CASE("head-on elastic collision of equal circles", "[physics][solver]") {
   const long double ke1 = kinetic_energy(a) + kinetic_energy(b);
   WARN("elastic pair: largest momentum change per step " << worst_step << " raw units of velocity; KE ratio "
                                                            << ke1 / ke0 << "; v_a " << ld(body_linear_velocity(a).x));
-  CHECK(worst_step <= 4);
-  CHECK(worst_y <= 4);
+  // The README quotes momentum and kinetic energy as conserved exactly: the
+  // two velocities are swapped to the raw unit, nothing spins, and no step
+  // changes the total momentum by even one raw unit.
+  CHECK(worst_step == 0);
+  CHECK(worst_y == 0);
+  CHECK(body_linear_velocity(a).x == -5_q32);
+  CHECK(body_linear_velocity(b).x == 5_q32);
+  CHECK(body_linear_velocity(a).y == 0_q32);
+  CHECK(body_linear_velocity(b).y == 0_q32);
+  CHECK(body_angular_velocity(a) == 0_q32);
+  CHECK(body_angular_velocity(b) == 0_q32);
+  readme::check_quotes("a head-on elastic collision of two equal circles conserves momentum and kinetic energy "
+                       "exactly (the velocities are swapped to the raw unit)");
   CHECK(std::fabs(ke1 / ke0 - 1) < 0.001L);
   CHECK(ld(body_linear_velocity(a).x) < -4.99L);  // they swapped velocities
   CHECK(ld(body_linear_velocity(b).x) > 4.99L);
