@@ -213,10 +213,6 @@ BodyId make_body_id(const World& world, int32_t index) {
   return id;
 }
 
-bool body_is_simulated(const Body& body) {
-  return body.type != BodyType::static_body && body.enabled && body.awake;
-}
-
 Status gather_shape_masses(const World& w, int32_t body_index, int32_t replace_shape, Q32 replace_density,
                            const std::string& what, std::vector<MassData>* out) {
   for (int32_t s = body_at(&w, body_index).head_shape; s != k_null_index;

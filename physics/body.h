@@ -125,7 +125,10 @@ BodyId make_body_id(const World& world, int32_t index);
 
 /// True when the body is simulated by the next step: non-static, enabled,
 /// awake.
-bool body_is_simulated(const Body& body);
+inline bool body_is_simulated(const Body& body) {
+  // Inline: the step's loops over bodies and contacts call it per element.
+  return body.type != BodyType::static_body && body.enabled && body.awake;
+}
 
 /// Recomputes the body's mass data from its shapes (or sets the static /
 /// kinematic / default values) and moves its world centre, keeping the

@@ -118,6 +118,14 @@ void events_after_contacts(World* w) {
   for (size_t i = 0; i < bodies; ++i) e.start_transforms[i] = w->body_sims[i].transform;
 
   e.hit_candidates.clear();
+  // Hits need a shape with hit events (off by default): one pass over the
+  // shapes is cheaper than a pass over the contacts, which outnumber them.
+  bool any_hit_shape = false;
+  const int32_t shapes = id_pool_capacity(w->shape_pool);
+  for (int32_t s = 0; s < shapes && !any_hit_shape; ++s) {
+    any_hit_shape = id_pool_is_alive(w->shape_pool, s) && w->shapes[static_cast<size_t>(s)].enable_hit_events;
+  }
+  if (!any_hit_shape) return;
   const Q32 threshold = w->def.hit_event_threshold;
   const Q32 dt = w->context.dt;
   const int32_t count = static_cast<int32_t>(w->contacts.size());

@@ -124,13 +124,49 @@ void wake_all_bodies(World* world) {
 
 void stage_wake_touched(World* world, StepContext* context) {
   (void)context;
+  // The rule, contact by contact in contact order: a touching contact wakes
+  // the island of a sleeping body whose other body wakes others. Bodies only
+  // go from asleep to awake here, so (1) with no sleeper at the start there
+  // is nothing to do, and (2) until the first wake of this pass every body's
+  // state is still its state at the start, which a per-body byte array
+  // holds; the contact loop then reads two bytes instead of two Body
+  // records. After the first wake the records are read again (a woken body
+  // now wakes others). Same wakes in the same order as testing the records
+  // for every contact.
+  const int32_t end = id_pool_capacity(world->body_pool);
+  constexpr uint8_t k_sleeping = 1, k_wakes_others = 2;
+  Arena* arena = &world->arena;
+  uint8_t* start = arena_allocate_array<uint8_t>(arena, end, "wake_start_states");
+  int32_t sleepers = 0;
+  for (int32_t b = 0; b < end; ++b) {
+    const Body& body = world->bodies[static_cast<size_t>(b)];
+    uint8_t state = 0;
+    if (id_pool_is_alive(world->body_pool, b)) {
+      if (is_sleeping(body)) state = k_sleeping;
+      if (wakes_others(body)) state = k_wakes_others;
+    }
+    sleepers += state == k_sleeping ? 1 : 0;
+    start[b] = state;
+  }
+  bool woke = false;
   for (const Contact& c : world->contacts) {
+    if (sleepers == 0) break;
     if ((c.flags & k_contact_touching) == 0) continue;
+    const uint8_t sa = start[c.body_a], sb = start[c.body_b];
+    if (((sa | sb) & k_sleeping) == 0) continue;  // neither can be asleep now
+    if (!woke && !(sa == k_sleeping && sb == k_wakes_others) && !(sb == k_sleeping && sa == k_wakes_others)) continue;
     Body& a = world->bodies[static_cast<size_t>(c.body_a)];
     Body& b = world->bodies[static_cast<size_t>(c.body_b)];
-    if (is_sleeping(a) && wakes_others(b)) wake_body_island(world, c.body_a);
-    if (is_sleeping(b) && wakes_others(a)) wake_body_island(world, c.body_b);
+    if (is_sleeping(a) && wakes_others(b)) {
+      wake_body_island(world, c.body_a);
+      woke = true;
+    }
+    if (is_sleeping(b) && wakes_others(a)) {
+      wake_body_island(world, c.body_b);
+      woke = true;
+    }
   }
+  arena_free(arena, start);
 }
 
 void stage_update_sleep(World* world, StepContext* context) {

@@ -228,6 +228,36 @@ Status world_set_user_data(WorldId world, uint64_t user_data);
 uint64_t world_user_data(WorldId world);
 /// Counts and memory; zeroes for an invalid handle.
 WorldCounters world_counters(WorldId world);
+/// Wall-clock time of each stage of the last non-empty world_step(), in
+/// nanoseconds (std::chrono::steady_clock, integers; like Box2D's b2Profile).
+/// Timing only: it is not simulation state — never hashed, never in a
+/// snapshot, never read by the step — so reading it (or not) changes no
+/// result. Sub-step stages are summed over the sub-steps. Every field is
+/// ≥ 0 and the stages sum to at most total_ns (the rest is the step's
+/// bookkeeping: arena growth, buffer headroom).
+struct WorldProfile {
+  int64_t broad_phase_ns = 0;           ///< broad-phase pair update (part of update_contacts)
+  int64_t narrow_phase_ns = 0;          ///< the rest of update_contacts: contact merge and manifolds
+  int64_t islands_ns = 0;               ///< wake_touched before the solve + update_sleep after it
+  int64_t events_ns = 0;                ///< events_after_contacts + events_after_step
+  int64_t prepare_ns = 0;               ///< prepare_bodies + prepare_contacts (constraints, colouring)
+  int64_t integrate_velocities_ns = 0;  ///< summed over sub-steps
+  int64_t warm_start_ns = 0;            ///< summed over sub-steps
+  int64_t solve_ns = 0;                 ///< summed over sub-steps
+  int64_t integrate_positions_ns = 0;   ///< summed over sub-steps
+  int64_t relax_ns = 0;                 ///< summed over sub-steps
+  int64_t restitution_ns = 0;           ///< approach-velocity records per sub-step + the restitution stage
+  int64_t store_impulses_ns = 0;        ///< impulses back to the contacts for warm starting
+  int64_t continuous_ns = 0;            ///< continuous collision (time of impact)
+  int64_t finalize_ns = 0;              ///< write back, clear forces, bounds check, shape AABBs
+  int64_t total_ns = 0;                 ///< the whole world_step(), validation to unlock
+};
+
+/// The per-stage timing of the last non-empty world_step() (see
+/// WorldProfile); zeroes before the first step and for an invalid handle. A
+/// refused step or one of 0 s leaves it unchanged.
+WorldProfile world_profile(WorldId world);
+
 /// Writes up to `capacity` handles of live bodies, in ascending body index,
 /// to out_ids (may be null when capacity is 0); returns the number of live
 /// bodies (0 for an invalid handle).

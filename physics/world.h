@@ -112,6 +112,7 @@ struct World {
   StepContext context;               ///< the current / last step
   uint64_t step_count = 0;           ///< accepted non-empty steps
   int32_t last_solver_body_count = 0;
+  WorldProfile profile;              ///< timing of the last step; not state (never hashed or saved)
   bool locked = false;               ///< true inside world_step(); changes are refused
 };
 

@@ -36,6 +36,13 @@ tandem_cli_test(run-json 0 "run|scenes/stack.json|--ticks|20|--json"
 tandem_cli_test(run-json-global 0 "--json|run|scenes/stack.json|--ticks|5" OUT "\"final_tick\": 5")
 tandem_cli_test(run-repeats 0 "run|scenes/impulses.json|--quiet" OUT "final tick 300"
   SAME "run|scenes/impulses.json|--quiet")
+# --profile: the per-stage table / JSON object; reading the profile changes no hash.
+tandem_cli_test(run-profile 0 "run|scenes/pyramid.json|--ticks|30|--profile"
+  OUT "per-stage profile over 30 steps.*\nsolve +[0-9.]+ +[0-9.]+ .*\ntotal +[0-9.]+")
+tandem_cli_test(run-profile-json 0 "run|scenes/stack.json|--ticks|10|--json|--profile"
+  OUT "\"profile\": \\{\"broad_phase\": \\{\"median_ms\": [0-9.]+, \"mean_ms\": [0-9.]+\\}.*\"total\": \\{")
+tandem_cli_test(run-profile-same-hash 0 "run|scenes/impulses.json|--quiet|--profile" OUT "final tick 300"
+  SAME "run|scenes/impulses.json|--quiet")
 tandem_cli_test(run-missing-scene-arg 2 "run" ERR "scene is required")
 tandem_cli_test(run-bad-broadphase 2 "run|scenes/stack.json|--broadphase|quadtree" ERR "quadtree not in")
 tandem_cli_test(run-negative-ticks 2 "run|scenes/stack.json|--ticks|-5" ERR "ticks")

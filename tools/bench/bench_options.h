@@ -31,6 +31,9 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
                  "the family; 0: no limit")
       ->check(CLI::Range(0, 1000000));
   app.add_flag("--peers,!--no-peers", o->peers, "also run Box2D 2.4 and Chipmunk2D (when linked in)");
+  app.add_flag("--profile", o->profile,
+               "print Tandem's per-stage profile (median ms/step per stage over all timed steps) as a Markdown "
+               "table; the JSON always has it");
   app.add_option("--csv", o->csv, "write the results as CSV to this file");
   app.add_option("--json", o->json, "write the results as JSON to this file");
   app.add_option("--svg", o->svg, "write a plot of circles-N step time against N to this SVG file");

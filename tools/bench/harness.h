@@ -11,6 +11,7 @@
 //   escaped             dynamic bodies whose centre ends outside the container
 //   moved               dynamic bodies that ended > 0.25 m sideways from their
 //                       start (a pyramid that stands has none)
+//   profile             Tandem only: world_profile() of every timed step
 //   fingerprint         Tandem only: FNV-1a of every body's position,
 //                       rotation and velocity raws at the end, so broad
 //                       phases can be checked to give identical states
@@ -24,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "profile_stats.h"
 #include "scenes.h"
 
 namespace tandem::bench {
@@ -46,6 +48,7 @@ struct Quality {
 struct RunResult {
   double ms_per_step = 0;
   Quality quality;
+  ProfileSeries profile;  ///< Tandem only: world_profile() after every timed step
   std::string error;
 };
 

@@ -47,7 +47,7 @@ void probe(const SceneSpec& scene, const std::vector<b2Body*>& bodies, bool end,
 RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
   RunResult result;
   auto world = std::make_unique<b2World>(b2Vec2(f32(scene.gravity_x), f32(scene.gravity_y)));
-  world->SetAllowSleeping(false);
+  world->SetAllowSleeping(scene.sleep);
   std::vector<b2Body*> bodies;
   bodies.reserve(scene.bodies.size());
   for (const BodySpec& s : scene.bodies) {
@@ -55,7 +55,8 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
     bd.type = s.dynamic ? b2_dynamicBody : b2_staticBody;
     bd.position.Set(f32(s.x), f32(s.y));
     bd.linearVelocity.Set(f32(s.vx), f32(s.vy));
-    bd.allowSleep = false;
+    bd.allowSleep = scene.sleep;
+    bd.awake = s.awake;
     b2Body* body = world->CreateBody(&bd);
     b2FixtureDef fd;
     fd.friction = f32(s.friction);
@@ -73,6 +74,13 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
         b2PolygonShape poly;
         poly.SetAsBox(f32(s.half_width), f32(s.half_height));
         fd.shape = &poly;
+        body->CreateFixture(&fd);
+        break;
+      }
+      case ShapeKind::segment: {
+        b2EdgeShape edge;
+        edge.SetTwoSided(b2Vec2(-f32(s.half_width), 0.0f), b2Vec2(f32(s.half_width), 0.0f));
+        fd.shape = &edge;
         body->CreateFixture(&fd);
         break;
       }
@@ -130,6 +138,8 @@ void spec_mass(const BodySpec& b, double* mass, double* inertia) {
       *inertia = *mass * (w * w + h * h) / 12.0;
       return;
     }
+    case ShapeKind::segment:
+      break;  // no area: static only
     case ShapeKind::capsule: {
       const double r = to_double(b.radius), hl = to_double(b.half_width), len = 2 * hl;
       const double m_rect = rho * len * 2 * r;

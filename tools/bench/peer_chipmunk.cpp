@@ -46,6 +46,12 @@ RunResult run_chipmunk(const SceneSpec& scene, int32_t warmup, int32_t steps) {
   RunResult result;
   cpSpace* space = cpSpaceNew();
   cpSpaceSetGravity(space, cpv(to_double(scene.gravity_x), to_double(scene.gravity_y)));
+  if (scene.sleep) {
+    // Box2D's sleep rule: 0.5 s below 0.05 m/s (Chipmunk's idle speed
+    // otherwise comes from gravity, which smash has none of).
+    cpSpaceSetSleepTimeThreshold(space, 0.5);
+    cpSpaceSetIdleSpeedThreshold(space, 0.05);
+  }
   cpBody* static_body = cpSpaceGetStaticBody(space);
   std::vector<cpBody*> bodies;  // static shapes share the space's static body
   std::vector<cpBody*> owned;
@@ -79,12 +85,20 @@ RunResult run_chipmunk(const SceneSpec& scene, int32_t warmup, int32_t steps) {
         shape = cpSegmentShapeNew(body, cpv(ox - hl, oy), cpv(ox + hl, oy), to_double(s.radius));
         break;
       }
+      case ShapeKind::segment: {
+        const double hl = to_double(s.half_width);
+        shape = cpSegmentShapeNew(body, cpv(ox - hl, oy), cpv(ox + hl, oy), 0.0);
+        break;
+      }
     }
     cpShapeSetFriction(shape, std::sqrt(to_double(s.friction)));
     cpShapeSetElasticity(shape, std::sqrt(to_double(s.restitution)));
     cpSpaceAddShape(space, shape);
     shapes.push_back(shape);
     bodies.push_back(body);
+  }
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.sleep && scene.bodies[i].dynamic && !scene.bodies[i].awake) cpBodySleep(bodies[i]);
   }
   probe(scene, bodies, false, &result.quality);
   const double dt = to_double(time_step());

@@ -3,7 +3,13 @@
 
 namespace tandem::bench {
 
-std::vector<Engine> peer_engines() { return {box2d24_engine(), chipmunk_engine()}; }
+std::vector<Engine> peer_engines() {
+#ifdef TANDEM_HAVE_BOX2D_V3
+  return {box2d24_engine(), chipmunk_engine(), box2d3_engine(1), box2d3_engine(2)};
+#else
+  return {box2d24_engine(), chipmunk_engine()};
+#endif
+}
 
 const char* peers_unavailable_reason() { return ""; }
 

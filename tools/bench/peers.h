@@ -1,5 +1,6 @@
 // peers.h — the peer engines' harnesses (tools only; Box2D 2.4 and
-// Chipmunk2D, linked only with TANDEM_BUILD_BENCH). Each builds the scene
+// Chipmunk2D, linked only with TANDEM_BUILD_BENCH; Box2D v3, optional, only
+// with TANDEM_BOX2D_V3_DIR as well — see peer_box2d3.cpp). Each builds the scene
 // from the same SceneSpec as Tandem, its doubles being the exact values of
 // the spec's Q32.32 numbers (scenes.h).
 //
@@ -26,6 +27,10 @@ namespace tandem::bench {
 Engine box2d24_engine();
 /// Chipmunk2D 7 (libchipmunk, as Debian builds it: debug checks on).
 Engine chipmunk_engine();
+/// Box2D v3 with `workers` workers of its built-in scheduler (only when the
+/// build has TANDEM_BOX2D_V3_DIR: peer_box2d3.cpp; the engine is named
+/// "box2d3-w<workers>").
+Engine box2d3_engine(int32_t workers);
 
 /// Exact mass (kg) and rotational inertia about the centre (kg·m²) of a
 /// spec's shape, in binary64.

@@ -3,8 +3,12 @@
 # build tandem_bench_physics, run the physics suite (Tandem's broad phases
 # against Box2D 2.4 and Chipmunk2D) and write the results to a folder.
 #
-# Usage: tools/bench/run_physics_bench.sh [--quick] [--build-dir DIR] [--out DIR] [-- BENCH_ARGS...]
+# Usage: tools/bench/run_physics_bench.sh [--quick] [--build-dir DIR] [--out DIR] [--box2d-v3 DIR] [-- BENCH_ARGS...]
 #   --quick        circles-1k, circles-2k, pyramid-20 only, 2 runs (smoke test, not for reporting)
+#   --box2d-v3     also run Box2D v3 (1 and 2 workers) from a checkout built
+#                  outside the repository (docs/benchmarks.md); sets the CMake
+#                  cache variable TANDEM_BOX2D_V3_DIR (it stays set in that
+#                  build folder until changed; "" turns it off)
 #   --build-dir    default build/bench (shared with run_fixed_bench.sh)
 #   --out          default build/bench-results (relative to the repository root)
 #   BENCH_ARGS     replace the default suite arguments, e.g.
@@ -25,14 +29,16 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="build/bench"
 out="build/bench-results"
 quick=0
+box2d_v3=unset
 bench_args=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --quick) quick=1; shift ;;
     --build-dir) build="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
+    --box2d-v3) box2d_v3="$2"; shift 2 ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_physics_bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -49,6 +55,7 @@ fi
 generator=()
 if [[ -z "${CMAKE_GENERATOR:-}" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
 read -r -a extra_cmake <<<"${CMAKE_ARGS:-}"
+if [[ "$box2d_v3" != unset ]]; then extra_cmake+=("-DTANDEM_BOX2D_V3_DIR=$box2d_v3"); fi
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
   cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DTANDEM_BUILD_BENCH=ON \
     -DTANDEM_BUILD_TESTS=OFF -DTANDEM_BUILD_TOOLS=OFF "${extra_cmake[@]}"

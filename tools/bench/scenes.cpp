@@ -182,7 +182,112 @@ SceneSpec make_rain(int32_t n, uint64_t seed) {
   return s;
 }
 
+SceneSpec make_many_pyramids(int32_t rows, int32_t columns, int32_t base) {
+  SceneSpec s;
+  s.name = "many_pyramids";
+  s.family = "many_pyramids";
+  s.size = rows * columns;
+  s.warmup_steps = 0;
+  s.timed_steps = 200;
+  s.gravity_y = q_int(-10);
+  const Q32 a = Q32::half();  // box half extent
+  const Q32 friction = q_ratio(3, 5);
+  const Q32 ground_dy = q_int(2) * a * q_int(base + 1);                 // 11 m
+  const Q32 ground_width = q_int(2) * a * q_int(columns) * q_int(base + 1);  // 220 m
+  for (int32_t i = 0; i < rows; ++i) {
+    BodySpec g;
+    g.dynamic = false;
+    g.shape = ShapeKind::segment;
+    g.x = Q32{};
+    g.y = q_int(i) * ground_dy;
+    g.half_width = ground_width / q_int(2);
+    g.friction = friction;
+    g.density = Q32::one();
+    s.bodies.push_back(g);
+  }
+  const Q32 base_width = q_int(2) * a * q_int(base);
+  for (int32_t r = 0; r < rows; ++r) {
+    const Q32 base_y = q_int(r) * ground_dy;
+    for (int32_t c = 0; c < columns; ++c) {
+      const Q32 center_x = -(ground_width / q_int(2)) + q_int(c) * (base_width + q_int(2) * a) + q_int(2) * a;
+      for (int32_t i = 0; i < base; ++i) {
+        const Q32 y = q_int(2 * i + 1) * a + base_y;
+        for (int32_t j = i; j < base; ++j) {
+          BodySpec b;
+          b.dynamic = true;
+          b.shape = ShapeKind::box;
+          b.x = q_int(i + 1) * a + q_int(2 * (j - i)) * a + center_x - Q32::half();
+          b.y = y;
+          b.half_width = a;
+          b.half_height = a;
+          b.friction = friction;
+          b.density = Q32::one();
+          s.bodies.push_back(b);
+          ++s.dynamic_count;
+        }
+      }
+    }
+  }
+  s.container.min_x = -to_double(ground_width) / 2 - 0.01;
+  s.container.max_x = to_double(ground_width) / 2 + 0.01;
+  s.container.min_y = -0.01;
+  return s;
+}
+
+SceneSpec make_smash(int32_t columns, int32_t rows) {
+  SceneSpec s;
+  s.name = "smash";
+  s.family = "smash";
+  s.size = columns * rows;
+  s.warmup_steps = 0;
+  s.timed_steps = 300;
+  s.sleep = true;
+  const Q32 friction = q_ratio(3, 5);
+  BodySpec hammer;
+  hammer.dynamic = true;
+  hammer.shape = ShapeKind::box;
+  hammer.x = q_int(-20);
+  hammer.vx = q_int(40);
+  hammer.half_width = q_int(4);
+  hammer.half_height = q_int(4);
+  hammer.friction = friction;
+  hammer.density = q_int(8);
+  s.bodies.push_back(hammer);
+  s.dynamic_count = 1;
+  const Q32 d = q_ratio(2, 5);
+  for (int32_t i = 0; i < columns; ++i) {
+    for (int32_t j = 0; j < rows; ++j) {
+      BodySpec b;
+      b.dynamic = true;
+      b.awake = false;
+      b.shape = ShapeKind::box;
+      b.x = q_int(i) * d + q_int(30);
+      b.y = q_int(2 * j - rows) * d / q_int(2);  // (j − rows/2)·d, exact for odd rows too
+      b.half_width = d / q_int(2);
+      b.half_height = d / q_int(2);
+      b.friction = friction;
+      b.density = Q32::one();
+      s.bodies.push_back(b);
+      ++s.dynamic_count;
+    }
+  }
+  return s;
+}
+
 bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
+  if (name == "large_pyramid") {
+    *out = make_pyramid(100);
+    out->name = "large_pyramid";
+    return true;
+  }
+  if (name == "many_pyramids") {
+    *out = make_many_pyramids();
+    return true;
+  }
+  if (name == "smash") {
+    *out = make_smash();
+    return true;
+  }
   const size_t dash = name.find('-');
   const std::string family = name.substr(0, dash);
   int64_t size = family == "rain" ? 4000 : 0;
@@ -216,13 +321,14 @@ bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
     *out = make_pyramid(static_cast<int32_t>(size));
     return true;
   }
-  *error = "scene '" + name + "': unknown family '" + family + "' (circles, pyramid, rain)";
+  *error = "scene '" + name + "': unknown family '" + family +
+           "' (circles-N, pyramid-B, rain-N, large_pyramid, many_pyramids, smash)";
   return false;
 }
 
 std::vector<std::string> default_scene_names() {
-  return {"circles-1000", "circles-2000", "circles-4000",  "circles-8000", "circles-16000",
-          "circles-32000", "pyramid-20",  "pyramid-100",   "rain-4000"};
+  return {"circles-1000", "circles-2000", "circles-4000", "circles-8000",  "circles-16000", "circles-32000",
+          "pyramid-20",   "pyramid-100",  "rain-4000",    "many_pyramids", "smash"};
 }
 
 }  // namespace tandem::bench

@@ -31,7 +31,20 @@
 //                from a 50-column lattice (1.5 m spacing, x jitter ±0.1 m)
 //                above an 80 m wide open-top container; gravity −10,
 //                friction 0.6, restitution 0. Timed 600 steps.
-// Every body has sleeping off (the harnesses disable it).
+// Box2D v3's joint-free benchmark scenes (benchmark/main.c and
+// shared/benchmarks.c of its repository, rebuilt here from their layout):
+//   large_pyramid  = pyramid-100 (the same layout: 5,050 boxes on a 100 m
+//                  half-width ground at y = −1), timed 500 steps.
+//   many_pyramids  20 × 20 pyramids of base 10 (55 boxes of half extent
+//                  0.5 m each, 22,000 boxes) on 20 static ground segments
+//                  11 m apart vertically, 220 m wide; gravity −10,
+//                  friction 0.6. Timed 200 steps.
+//   smash          no gravity; a 8 × 8 m box of density 8 at (−20, 0) moving
+//                  at 40 m/s into a 120 × 80 block of 0.4 m boxes (9,600,
+//                  created asleep, starting at x = 30, centred on y = 0);
+//                  sleeping on. Timed 300 steps.
+// Every other body has sleeping off (the harnesses disable it unless the
+// scene has `sleep`).
 #pragma once
 
 #include <cstdint>
@@ -48,11 +61,13 @@ enum class ShapeKind : int32_t {
   circle = 0,   ///< radius
   box = 1,      ///< half_width × half_height, axis-aligned, centred on the body
   capsule = 2,  ///< segment (−half_width, 0)…(+half_width, 0) swept by radius
+  segment = 3,  ///< two-sided segment (−half_width, 0)…(+half_width, 0); static bodies only
 };
 
 /// One body with one shape, in Q32.32 SI units (m, m/s, kg/m²).
 struct BodySpec {
   bool dynamic = false;
+  bool awake = true;            ///< false: created asleep (scenes with sleep on only)
   ShapeKind shape = ShapeKind::box;
   Q32 x, y;                     ///< position of the body origin (= centre of mass), m
   Q32 vx, vy;                   ///< initial linear velocity, m/s
@@ -73,7 +88,7 @@ struct Container {
 /// A whole scene.
 struct SceneSpec {
   std::string name;    ///< e.g. "circles-4000"
-  std::string family;  ///< "circles", "pyramid" or "rain"
+  std::string family;  ///< "circles", "pyramid", "rain", "many_pyramids" or "smash"
   int32_t size = 0;    ///< N (circles, rain) or base B (pyramid)
   Q32 gravity_x, gravity_y;     ///< m/s²
   std::vector<BodySpec> bodies;  ///< build in this order
@@ -81,6 +96,7 @@ struct SceneSpec {
   int32_t timed_steps = 0;       ///< default timed steps
   int32_t track_index = -1;      ///< body whose height is reported (pyramid top), −1 none
   int32_t dynamic_count = 0;
+  bool sleep = false;            ///< sleeping on (smash); every other scene runs with it off
   Container container;
 };
 
@@ -98,13 +114,20 @@ SceneSpec make_pyramid(int32_t base);
 /// rain-N (seed 777 as scene.h).
 SceneSpec make_rain(int32_t n, uint64_t seed = 777);
 
+/// many_pyramids: rows × columns pyramids of the given base (v3: 20, 20, 10).
+SceneSpec make_many_pyramids(int32_t rows = 20, int32_t columns = 20, int32_t base = 10);
+/// smash: a heavy box into columns × rows sleeping boxes (v3: 120, 80).
+SceneSpec make_smash(int32_t columns = 120, int32_t rows = 80);
+
 /// Parses a scene name — "circles-4000", "circles-4k", "pyramid-100",
-/// "rain-4000", "rain" (= rain-4000) — and builds it. On an unknown family
+/// "rain-4000", "rain" (= rain-4000), "large_pyramid", "many_pyramids",
+/// "smash" — and builds it. On an unknown family
 /// or a size out of range (circles/rain 1…100000, pyramid 1…200) returns
 /// false and writes why to *error.
 bool make_scene(const std::string& name, SceneSpec* out, std::string* error);
 
-/// The default suite: circles-1k…32k, pyramid-20, pyramid-100, rain-4000.
+/// The default suite: circles-1k…32k, pyramid-20, pyramid-100 (=
+/// large_pyramid), rain-4000, many_pyramids, smash.
 std::vector<std::string> default_scene_names();
 
 }  // namespace tandem::bench

@@ -27,6 +27,13 @@ for r in rows:
     assert int(r["escaped"]) == 0, f"{r['scene']} {r['engine']}: {r['escaped']} bodies escaped"
 data = json.load(open(f"{out}/smoke.json"))
 assert len(data["results"]) == len(rows) and data["warnings"] == [], data["warnings"]
+for r in data["results"]:  # Tandem rows carry the per-stage profile (world_profile), peers none
+    if r["engine"] == "tandem":
+        p = r["profile"]
+        assert p["total"]["median_ms"] > 0 and all(v["median_ms"] >= 0 for v in p.values()), p
+        assert sum(v["mean_ms"] for k, v in p.items() if k != "total") <= p["total"]["mean_ms"] * 1.000001, p
+    else:
+        assert "profile" not in r, r
 svg = xml.dom.minidom.parse(f"{out}/smoke.svg")
 lines = svg.getElementsByTagName("polyline")
 assert len(lines) == len(engines), f"{len(lines)} polylines for {len(engines)} engines"

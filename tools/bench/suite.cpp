@@ -27,6 +27,7 @@ struct Row {
   std::vector<double> ms;
   double median = 0, min = 0, max = 0;
   Quality quality;
+  ProfileSeries profile;  ///< Tandem: every timed step of every run
   std::string error;    ///< the engine refused the scene
   std::string skipped;  ///< not run, and why
   std::string note;     ///< e.g. fewer runs than asked, and why
@@ -179,7 +180,7 @@ void print_table(const std::vector<Row>& rows, const Machine& m, const BenchOpti
               m.load_before.c_str(), m.load_after.c_str());
   std::printf("ratios are Tandem / peer (above 1: Tandem slower). Quality columns: first run.\n\n");
   std::printf("%-14s %-16s %5s %9s %-19s", "scene", "engine", "runs", "median", "min-max");
-  for (const std::string& p : peers) std::printf(" %9s", ("/" + p).substr(0, 9).c_str());
+  for (const std::string& p : peers) std::printf(" %10s", ("/" + p).substr(0, 10).c_str());
   std::printf(" %9s %10s %9s %9s %8s %4s  %s\n", "KE chg %", "KE end J", "top y", "top sag", "max v", "esc", "notes");
   (void)o;
   for (const Row& r : rows) {
@@ -192,7 +193,7 @@ void print_table(const std::vector<Row>& rows, const Machine& m, const BenchOpti
     std::printf(" %5d %9.3f %-19s", r.runs, r.median, mm.c_str());
     for (const std::string& p : peers) {
       const auto it = r.ratio.find(p);
-      std::printf(" %9s", it == r.ratio.end() ? "" : fmt("%.2fx", it->second).c_str());
+      std::printf(" %10s", it == r.ratio.end() ? "" : fmt("%.2fx", it->second).c_str());
     }
     const bool tracked = r.family == "pyramid";
     std::printf(" %9s %10s %9s %9s %8s %4d ", fmt("%+.3f", ke_change_percent(r.quality)).c_str(),
@@ -312,6 +313,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
           << ", \"at_rest\": " << (at_rest(r) ? "true" : "false");
     }
     if (q.has_fingerprint) out << ", \"state_fingerprint\": " << json_string(hex64(q.fingerprint));
+    if (!r.profile.empty()) out << ", \"profile\": " << profile_json(r.profile.stats());
     if (!r.note.empty()) out << ", \"run_note\": " << json_string(r.note);
     out << "}";
   }
@@ -410,6 +412,29 @@ bool write_svg(const std::string& path, const std::vector<Row>& rows, const Mach
   return static_cast<bool>(out);
 }
 
+/// Tandem's per-stage profile, one Markdown row per Tandem row: the median
+/// ms/step of each stage over every timed step of every run.
+void print_profile_markdown(const std::vector<Row>& rows) {
+  bool header = false;
+  for (const Row& r : rows) {
+    if (r.profile.empty()) continue;
+    const std::vector<StageStat> stats = r.profile.stats();
+    if (!header) {
+      std::printf("\nPer-stage profile (world_profile()): median ms per step over every timed step of every run\n\n");
+      std::printf("| scene | engine |");
+      for (const StageStat& s : stats) std::printf(" %s |", s.name);
+      std::printf("\n|---|---|");
+      for (size_t i = 0; i < stats.size(); ++i) std::printf("--:|");
+      std::printf("\n");
+      header = true;
+    }
+    std::printf("| %s | %s |", r.scene.c_str(), label(r).c_str());
+    for (const StageStat& s : stats) std::printf(" %.3f |", s.median_ms);
+    std::printf("\n");
+  }
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int run_bench_suite(const BenchOptions& o) {
@@ -488,6 +513,7 @@ int run_bench_suite(const BenchOptions& o) {
           break;
         }
         if (run == 0) row.quality = r.quality;
+        row.profile.append(r.profile);
         row.ms.push_back(r.ms_per_step);
         if (!o.quiet) {
           std::fprintf(stderr, "  %-14s %-18s run %d/%d: %.3f ms/step\n", scene.name.c_str(), label(row).c_str(),
@@ -534,6 +560,7 @@ int run_bench_suite(const BenchOptions& o) {
   }
   machine.load_after = load_average();
   print_table(rows, machine, o);
+  if (o.profile) print_profile_markdown(rows);
   for (const std::string& w : warnings) std::printf("WARNING: %s\n", w.c_str());
   int status = warnings.empty() ? 0 : 1;
   if (!o.csv.empty() && !write_csv(o.csv, rows)) {

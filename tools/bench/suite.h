@@ -33,6 +33,8 @@ struct BenchOptions {
                                           ///< it and skips the engine for larger scenes of the family; 0: off
   std::string csv, json, svg;             ///< output files; empty: not written
   bool quiet = false;                     ///< no progress lines on stderr
+  bool profile = false;                   ///< also print Tandem's per-stage profile (median ms per
+                                          ///< stage, world_profile()) as a Markdown table
 };
 
 /// Runs the suite: progress on stderr, the table on stdout, the files asked

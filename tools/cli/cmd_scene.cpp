@@ -24,6 +24,7 @@
 
 #include "cli.h"
 #include "cli_util.h"
+#include "profile_stats.h"
 #include "render/render.h"
 #include "replay/replay_file.h"
 #include "replay/state.h"
@@ -91,6 +92,8 @@ struct Session {
   int64_t tick = 0;
   uint32_t step_flags = 0;  // OR of every step's flags
   std::vector<double> step_seconds;
+  bool profiling = false;               // run --profile: record world_profile() after every timed step
+  bench::ProfileSeries profile;
   ~Session() {
     if (!is_null(built.world)) destroy_world(built.world);
   }
@@ -141,6 +144,7 @@ int step_once(const std::string& command, Session* s, bool timed) {
   const auto t0 = Clock::now();
   const StepResult r = world_step(s->built.world, s->scene.time_step);
   if (timed) s->step_seconds.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  if (timed && s->profiling && r.ok()) s->profile.add(world_profile(s->built.world));
   if (!r.ok()) {
     std::fprintf(stderr, "tandem %s: %s: step %" PRId64 " refused: %s\n", command.c_str(), s->scene.name.c_str(),
                  s->tick + 1, r.status.message.c_str());
@@ -159,13 +163,14 @@ struct RunArgs {
   int64_t ticks = -1;
   std::string broad_phase;
   int64_t hash_every = 60;
-  bool json = false, quiet = false;
+  bool json = false, quiet = false, profile = false;
 };
 
 int run_run(const RunArgs& a, const GlobalOptions& g) {
   const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
   Session s;
   if (int rc = open_session("run", a.scene, a.broad_phase, &s)) return rc;
+  s.profiling = a.profile;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
   struct Mark {
     int64_t tick;
@@ -203,9 +208,11 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
       std::printf("%s{\"tick\": %" PRId64 ", \"hash\": \"%s\"}", i ? ", " : "", marks[i].tick, hex64(marks[i].hash).c_str());
     std::printf("],\n \"final_tick\": %" PRId64 ", \"final_hash\": \"%s\", \"bodies_hash\": \"%s\", "
                 "\"body_left_bounds\": %s,\n"
-                " \"step_ms\": {\"median\": %.6f, \"mean\": %.6f, \"max\": %.6f}, \"wall_s\": %.6f}\n",
+                " \"step_ms\": {\"median\": %.6f, \"mean\": %.6f, \"max\": %.6f}, \"wall_s\": %.6f",
                 ticks, hex64(final_hash).c_str(), hex64(bodies_hash(s.built.world)).c_str(), left_bounds ? "true" : "false",
                 median_ms, mean_ms, max_ms, wall);
+    if (a.profile) std::printf(",\n \"profile\": %s", bench::profile_json(s.profile.stats()).c_str());
+    std::printf("}\n");
     return 0;
   }
   if (!quiet) {
@@ -215,6 +222,10 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
     for (const Mark& m : marks) std::printf("tick %8" PRId64 "  hash %s\n", m.tick, hex64(m.hash).c_str());
     std::printf("step time: median %.3f ms, mean %.3f ms, max %.3f ms (%.2f s in all)\n", median_ms, mean_ms, max_ms, total);
     if (left_bounds) std::printf("note: a body left the world bounds and was disabled\n");
+    if (a.profile) {
+      std::printf("per-stage profile over %zu steps (world_profile(), ms per step):\n%s", s.profile.size(),
+                  bench::profile_table(s.profile.stats()).c_str());
+    }
     std::printf("bodies hash %s (bodies and shapes only: the same for every broad phase)\n",
                 hex64(bodies_hash(s.built.world)).c_str());
   }
@@ -489,9 +500,12 @@ void register_scene_commands(CLI::App& app, const GlobalOptions& options, std::v
   run->add_option("--hash-every", run_args->hash_every, "print the state hash every K ticks (0: final only)")
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 40));
   add_output_flags(run, &run_args->json, &run_args->quiet, "print only the final hash");
+  run->add_flag("--profile", run_args->profile,
+                "per-stage step times (world_profile()): median and mean ms per stage, as a table or in --json");
   run->footer(
       "Examples:\n  tandem run scenes/pyramid.json\n  tandem run scenes/circles.json --ticks 3600 --broadphase grid\n"
-      "  tandem run scenes/rain.json --hash-every 0 --json\n");
+      "  tandem run scenes/rain.json --hash-every 0 --json\n"
+      "  tandem run scenes/pyramid.json --profile\n");
   commands->push_back({run, [run_args, &options] { return run_run(*run_args, options); }});
 
   auto* render = app.add_subcommand("render", "Draw a scene at some ticks to PNG or SVG (Cairo)");
