@@ -13,7 +13,7 @@ exported=$(nm -D --defined-only "$lib" | awk '$2 != "A" {print $3}' | sed 's/@.*
 bad=$(grep -v '^tandem_' <<<"$exported" || true)
 [ -z "$bad" ] || fail "symbols not named tandem_*: $(head -20 <<<"$bad" | tr '\n' ' ')"
 # The version node is TANDEM_C_1 (shown by nm as an absolute symbol).
-nm -D "$lib" | grep -q ' A TANDEM_C_1$' || fail "no TANDEM_C_1 version node"
+nm -D "$lib" | grep ' A TANDEM_C_1$' >/dev/null || fail "no TANDEM_C_1 version node"
 
 declared=$(grep -oE '\btandem_[a-z0-9_]+\(' "$header" | tr -d '(' | sort -u)
 missing=$(comm -23 <(echo "$declared") <(echo "$exported"))
