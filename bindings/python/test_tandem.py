@@ -112,5 +112,21 @@ class PythonicLayer(unittest.TestCase):
         world.close()  # idempotent
 
 
+class ReadmeExample(unittest.TestCase):
+    def test_readme_python_block_runs(self):
+        """The Python block of the README's "From other languages" section runs as written."""
+        root = pathlib.Path(__file__).resolve().parents[2]
+        readme = (root / "README.md").read_text(encoding="utf-8")
+        section = readme[readme.index("## From other languages"):]
+        block = section[section.index("```python\n") + 10:]
+        block = block[:block.index("```")]
+        cwd = os.getcwd()
+        os.chdir(root)
+        try:
+            exec(compile(block, "README.md (From other languages)", "exec"), {"__name__": "readme"})
+        finally:
+            os.chdir(cwd)
+
+
 if __name__ == "__main__":
     unittest.main()
