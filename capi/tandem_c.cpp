@@ -56,7 +56,7 @@ namespace {
 
 // --- layout checks: the C structs mirror the C++ ones ------------------------
 static_assert(sizeof(tandem_world_id) == sizeof(WorldId) && sizeof(tandem_body_id) == sizeof(BodyId) &&
-              sizeof(tandem_shape_id) == sizeof(ShapeId));
+              sizeof(tandem_shape_id) == sizeof(ShapeId) && sizeof(tandem_joint_id) == sizeof(JointId));
 static_assert(sizeof(tandem_vec2) == sizeof(Vec2) && sizeof(tandem_rot) == sizeof(Rot));
 static_assert(std::is_same_v<tandem_q32, Q32::raw_type> && std::is_same_v<tandem_q16, Q16::raw_type>);
 static_assert(TANDEM_MAX_POLYGON_VERTICES == k_max_polygon_vertices);

@@ -175,6 +175,9 @@ typedef struct tandem_world_id { uint16_t index1, generation; } tandem_world_id;
 typedef struct tandem_body_id { uint32_t index1, generation; tandem_world_id world; } tandem_body_id;
 /** A shape: slot + 1 in its world (0 = null), generation, and the world. */
 typedef struct tandem_shape_id { uint32_t index1, generation; tandem_world_id world; } tandem_shape_id;
+/** A joint: slot + 1 in its world (0 = null), generation, and the world.
+ * Reserved: the joint functions arrive with the C++ joint API. */
+typedef struct tandem_joint_id { uint32_t index1, generation; tandem_world_id world; } tandem_joint_id;
 /** A replay recorder owned by this library (0 = null). */
 typedef struct tandem_recorder_id { uint32_t index1, generation; } tandem_recorder_id;
 /** A replay loaded into memory, owned by this library (0 = null). */
