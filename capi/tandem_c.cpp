@@ -1261,6 +1261,30 @@ tandem_status tandem_world_body_hashes(tandem_world_id world, uint64_t* out_hash
   });
 }
 
+tandem_status tandem_encode_state_delta(const uint8_t* base, size_t base_size, const uint8_t* image, size_t image_size,
+                                        uint8_t* out_delta, size_t capacity, size_t* out_size) {
+  static const char* fn = "tandem_encode_state_delta";
+  if ((base == nullptr && base_size != 0) || (image == nullptr && image_size != 0)) return null_pointer(fn, "an image");
+  return guard(fn, [&] {
+    std::vector<uint8_t> delta;
+    encode_state_delta(base, base_size, image, image_size, &delta);
+    return fill(fn, std::span<const uint8_t>(delta), out_delta, capacity, out_size, same<uint8_t>);
+  });
+}
+
+tandem_status tandem_apply_state_delta(const uint8_t* base, size_t base_size, const uint8_t* delta, size_t delta_size,
+                                       uint8_t* out_image, size_t capacity, size_t* out_size) {
+  static const char* fn = "tandem_apply_state_delta";
+  if ((base == nullptr && base_size != 0) || (delta == nullptr && delta_size != 0)) return null_pointer(fn, "an input");
+  return guard(fn, [&] {
+    std::vector<uint8_t> image;
+    if (const Status s = apply_state_delta(base, base_size, delta, delta_size, &image); !s.ok()) {
+      return fail(TANDEM_ERROR_PARSE, std::string(fn) + ": " + s.message);
+    }
+    return fill(fn, std::span<const uint8_t>(image), out_image, capacity, out_size, same<uint8_t>);
+  });
+}
+
 tandem_status tandem_diff_snapshots(const uint8_t* a, size_t a_size, const uint8_t* b, size_t b_size,
                                     tandem_diff_report* out_report) {
   static const char* fn = "tandem_diff_snapshots";
@@ -1550,6 +1574,14 @@ tandem_status tandem_replay_create_world_at(tandem_replay_id replay, uint64_t ti
       g_filters[w.value.index1] = FilterSlot{};
     }
     return status(w.status);
+  });
+}
+
+tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, uint64_t tick) {
+  static const char* fn = "tandem_replay_seek";
+  return guard(fn, [&] {
+    TANDEM_C_GET_REPLAY(r, fn, replay);
+    return status(r->replay.seek(to_cpp(world), tick));
   });
 }
 

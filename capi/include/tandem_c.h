@@ -702,6 +702,18 @@ TANDEM_C_API uint64_t tandem_body_state_hash(tandem_body_id body);
 TANDEM_C_API tandem_status tandem_world_body_hashes(tandem_world_id world, uint64_t* out_hashes, int32_t capacity,
                                                     int32_t* out_count);
 
+/** Encodes state image `image` as a delta against state image `base`
+ * (replay/state.h: XOR with the base, run-length coded; small for the ticks
+ * of a rollback window). Buffer rule over bytes (*out_size: the delta's
+ * size; a size query encodes once to measure). */
+TANDEM_C_API tandem_status tandem_encode_state_delta(const uint8_t* base, size_t base_size, const uint8_t* image,
+                                                     size_t image_size, uint8_t* out_delta, size_t capacity, size_t* out_size);
+/** Rebuilds the image from `base` and a delta made against it (buffer rule
+ * over bytes). Refuses a delta made against another base and corrupt data,
+ * naming the byte offset. */
+TANDEM_C_API tandem_status tandem_apply_state_delta(const uint8_t* base, size_t base_size, const uint8_t* delta,
+                                                    size_t delta_size, uint8_t* out_image, size_t capacity, size_t* out_size);
+
 /** Where two states or runs part (replay/verify.h DiffReport). Free with
  * tandem_free_diff_report. */
 typedef struct tandem_diff_report {
@@ -839,6 +851,10 @@ TANDEM_C_API uint64_t tandem_replay_tick_count(tandem_replay_id replay);
 TANDEM_C_API tandem_status tandem_replay_tick_hash(tandem_replay_id replay, uint64_t tick, uint64_t* out_hash);
 /** A new world in the state after `tick` ticks. */
 TANDEM_C_API tandem_status tandem_replay_create_world_at(tandem_replay_id replay, uint64_t tick, tandem_world_id* out_world);
+
+/** Puts an existing world into the replay's state after `tick` ticks
+ * (restores the nearest keyframe, then re-runs the recorded ticks). */
+TANDEM_C_API tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, uint64_t tick);
 
 /** The outcome of tandem_verify_replay. Free with tandem_free_verify_report. */
 typedef struct tandem_verify_report {

@@ -695,6 +695,33 @@ TEST_CASE("snapshots, restore, hashes and snapshot diffs", "[capi]") {
   uint64_t one[1];
   require_error(tandem_world_body_hashes(w.id, one, 1, &count), TANDEM_ERROR_BUFFER_TOO_SMALL, "result has 2");
 
+  // Deltas: end as a delta against start, rebuilt exactly.
+  size_t delta_size = 0;
+  REQUIRE(tandem_encode_state_delta(start.data(), start.size(), end.data(), end.size(), nullptr, 0, &delta_size) ==
+          TANDEM_OK);
+  CHECK(delta_size < end.size());
+  std::vector<uint8_t> delta(delta_size);
+  REQUIRE(tandem_encode_state_delta(start.data(), start.size(), end.data(), end.size(), delta.data(), delta.size(),
+                                    &delta_size) == TANDEM_OK);
+  require_error(tandem_encode_state_delta(start.data(), start.size(), end.data(), end.size(), delta.data(), 2, &delta_size),
+                TANDEM_ERROR_BUFFER_TOO_SMALL, "");
+  std::vector<uint8_t> rebuilt(end.size());
+  size_t rebuilt_size = 0;
+  REQUIRE(tandem_apply_state_delta(start.data(), start.size(), delta.data(), delta.size(), rebuilt.data(), rebuilt.size(),
+                                   &rebuilt_size) == TANDEM_OK);
+  CHECK(rebuilt == end);
+  require_error(tandem_apply_state_delta(end.data(), end.size(), delta.data(), delta.size(), rebuilt.data(),
+                                         rebuilt.size(), &rebuilt_size),
+                TANDEM_ERROR_PARSE, "");  // another base
+  require_error(tandem_apply_state_delta(start.data(), start.size(), delta.data(), delta.size(), rebuilt.data(), 3,
+                                         &rebuilt_size),
+                TANDEM_ERROR_BUFFER_TOO_SMALL, "");
+  require_error(tandem_apply_state_delta(start.data(), start.size(), nullptr, 4, rebuilt.data(), rebuilt.size(),
+                                         &rebuilt_size),
+                TANDEM_ERROR_NULL_POINTER, "");
+  require_error(tandem_encode_state_delta(nullptr, 4, end.data(), end.size(), nullptr, 0, &delta_size),
+                TANDEM_ERROR_NULL_POINTER, "");
+
   // Diffs.
   tandem_diff_report report;
   REQUIRE(tandem_diff_snapshots(start.data(), start.size(), end.data(), end.size(), &report) == TANDEM_OK);
@@ -785,7 +812,14 @@ TEST_CASE("commands, recorders, replays: record, verify, diff", "[capi]") {
   REQUIRE(tandem_replay_create_world_at(replay, 10, &at10) == TANDEM_OK);
   REQUIRE(tandem_replay_tick_hash(replay, 10, &h) == TANDEM_OK);
   CHECK(tandem_world_state_hash(at10) == h);
+  // Seek an existing world back to tick 4, then forward to tick 10.
+  REQUIRE(tandem_replay_seek(replay, at10, 4) == TANDEM_OK);
+  REQUIRE(tandem_replay_tick_hash(replay, 4, &h) == TANDEM_OK);
+  CHECK(tandem_world_state_hash(at10) == h);
+  require_error(tandem_replay_seek(replay, at10, 99), TANDEM_ERROR_INVALID_ARGUMENT, "");
   REQUIRE(tandem_destroy_world(at10) == TANDEM_OK);
+  require_error(tandem_replay_seek(replay, at10, 4), TANDEM_ERROR_INVALID_HANDLE, "world");
+  require_error(tandem_replay_seek(tandem_replay_id{}, at10, 4), TANDEM_ERROR_NULL_HANDLE, "null replay");
   tandem_verify_report vr;
   REQUIRE(tandem_verify_replay(replay, UINT64_MAX, true, &vr) == TANDEM_OK);
   CHECK(vr.ok);
