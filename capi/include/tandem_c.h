@@ -926,8 +926,10 @@ typedef struct tandem_scene_info {
   int32_t input_count;    /**< scripted inputs */
 } tandem_scene_info;
 
-/** Loads a scene file (path UTF-8). TANDEM_ERROR_UNSUPPORTED in a build
- * without the scene loader. */
+/** Loads a scene file (path UTF-8). TANDEM_ERROR_PARSE for an unreadable
+ * or malformed file (the message names the file, the JSON pointer and what
+ * was expected); TANDEM_ERROR_UNSUPPORTED in a build without the scene
+ * loader (TANDEM_BUILD_TOOLS=OFF). */
 TANDEM_C_API tandem_status tandem_scene_load_file(const char* path, tandem_scene_id* out_scene);
 /** Parses scene JSON text of `size` bytes; `name` (may be NULL) prefixes errors. */
 TANDEM_C_API tandem_status tandem_scene_load_text(const char* text, size_t size, const char* name, tandem_scene_id* out_scene);
