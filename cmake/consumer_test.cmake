@@ -3,7 +3,11 @@
 # 1. installs the build in TANDEM_BINARY_DIR to WORK_DIR/prefix;
 # 2. configures, builds and runs tests/consumer there with find_package(Tandem);
 # 3. compiles tests/consumer/main.cpp again with `pkg-config --cflags --libs
-#    tandem` (PKG_CONFIG_PATH pointing into the prefix) and runs it.
+#    tandem` (PKG_CONFIG_PATH pointing into the prefix) and runs it;
+# 4. with C_API on: runs the C consumer (c_consumer.c, linked to the installed
+#    libtandem.so through Tandem::c) and compiles it again with `pkg-config
+#    tandem-c` (the C compiler matching CXX: gcc for g++, clang for clang++)
+#    and runs it with LD_LIBRARY_PATH at the prefix's lib directory.
 # Any failing step fails the test with the step's output.
 foreach(var TANDEM_BINARY_DIR TANDEM_CONSUMER_DIR WORK_DIR CXX GENERATOR LIBDIR PKG_CONFIG)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
@@ -76,3 +80,27 @@ separate_arguments(libs UNIX_COMMAND "${libs}")
 step("compile with pkg-config flags" ${CXX} ${cflags} ${TANDEM_CONSUMER_DIR}/main.cpp -o ${WORK_DIR}/pc_consumer ${libs})
 step("run the pkg-config consumer" ${WORK_DIR}/pc_consumer)
 message(STATUS "${step_output}")
+
+# --- the C API: libtandem.so both ways --------------------------------------------
+if(C_API)
+  foreach(f ${LIBDIR}/libtandem.so ${LIBDIR}/pkgconfig/tandem-c.pc include/tandem/tandem_c.h)
+    if(NOT EXISTS ${prefix}/${f})
+      message(FATAL_ERROR "consumer test: ${f} was not installed")
+    endif()
+  endforeach()
+  step("run the CMake C consumer (Tandem::c)" ${WORK_DIR}/build/tandem_c_consumer)
+  message(STATUS "${step_output}")
+  string(REGEX REPLACE "clang\\+\\+$" "clang" cc "${CXX}")
+  string(REGEX REPLACE "g\\+\\+$" "gcc" cc "${cc}")
+  step("pkg-config --cflags tandem-c" ${PKG_CONFIG} --cflags tandem-c)
+  string(STRIP "${step_output}" c_cflags)
+  step("pkg-config --libs tandem-c" ${PKG_CONFIG} --libs tandem-c)
+  string(STRIP "${step_output}" c_libs)
+  separate_arguments(c_cflags UNIX_COMMAND "${c_cflags}")
+  separate_arguments(c_libs UNIX_COMMAND "${c_libs}")
+  step("compile the C consumer with pkg-config tandem-c" ${cc} -std=c11 -Wall -Wextra -pedantic -Werror ${c_cflags}
+    ${TANDEM_CONSUMER_DIR}/c_consumer.c -o ${WORK_DIR}/pc_c_consumer ${c_libs})
+  set(ENV{LD_LIBRARY_PATH} ${prefix}/${LIBDIR})
+  step("run the pkg-config C consumer" ${WORK_DIR}/pc_c_consumer)
+  message(STATUS "${step_output}")
+endif()

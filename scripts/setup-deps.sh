@@ -5,8 +5,8 @@
 #
 # Usage: scripts/setup-deps.sh [all|demo|ci-cross|matrix]
 #   all      (default) everything scripts/test.sh needs: the libraries,
-#            Catch2, the i686 and s390x cross compilers, qemu-user,
-#            pkg-config, plus the ci-cross group
+#            Catch2, Python 3 and Mono (binding tests), the i686 and s390x
+#            cross compilers, qemu-user, pkg-config, plus the ci-cross group
 #   demo     only what building and running `tandem demo` needs
 #   ci-cross the extra cross rows scripts/test.sh runs (aarch64 under qemu,
 #            wasm32-wasi under node)
@@ -25,6 +25,9 @@ group=${1:-all}
 base=(build-essential cmake clang git ninja-build pkg-config)
 # Libraries the library, the command line and its demo use.
 libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
+# The C API's binding tests (capi/tests): Python runs bindings/python (ctypes,
+# standard library only), mcs + mono compile and run bindings/csharp.
+bindings=(python3 mono-mcs mono-runtime)
 # Only for scripts/test.sh: cross builds and tools/bench.
 extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev)
 # Cross rows of scripts/test.sh beyond i686/s390x (golden chains only).
@@ -35,10 +38,10 @@ ci_cross=(g++-aarch64-linux-gnu wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-
 matrix=(g++-arm-linux-gnueabihf g++-riscv64-linux-gnu g++-powerpc64le-linux-gnu g++-mingw-w64-x86-64 wine64)
 
 case "$group" in
-  all) wanted=("${base[@]}" "${libs[@]}" "${extra[@]}" "${ci_cross[@]}") ;;
+  all) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}") ;;
   demo) wanted=("${base[@]}" "${libs[@]}") ;;
   ci-cross) wanted=("${ci_cross[@]}") ;;
-  matrix) wanted=("${base[@]}" "${libs[@]}" "${extra[@]}" "${ci_cross[@]}" "${matrix[@]}") ;;
+  matrix) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}" "${matrix[@]}") ;;
   *) echo "usage: $0 [all|demo|ci-cross|matrix]" >&2; exit 2 ;;
 esac
 
