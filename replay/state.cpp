@@ -757,15 +757,24 @@ struct ImageChecker {
                                                            ": " + r.who() + " " + field + " " + what);
   }
   static std::string text(Q32 v, const char* unit) { return to_string(v) + (*unit ? std::string(" ") + unit : ""); }
-  /// lo ≤ v ≤ hi (lo_open: lo < v).
+  /// lo ≤ v ≤ hi (lo_open: lo < v). The test is inline; the message is
+  /// built out of line, only on failure.
   void range(const RecordRef& r, const char* field, Q32 v, Q32 lo, Q32 hi, const char* unit, bool lo_open = false) {
     if ((lo_open ? lo < v : lo <= v) && v <= hi) return;
+    refuse_range(r, field, v, lo, hi, unit, lo_open);
+  }
+  [[gnu::noinline, gnu::cold]] void refuse_range(const RecordRef& r, const char* field, Q32 v, Q32 lo, Q32 hi,
+                                                 const char* unit, bool lo_open) {
     refuse(r, field,
            text(v, unit) + " is outside " + (lo_open ? "(" : "[") + to_string(lo) + ", " + to_string(hi) + "]" +
                (*unit ? std::string(" ") + unit : ""));
   }
   void equal(const RecordRef& r, const char* field, Q32 v, Q32 expected, const char* unit, const char* from) {
     if (v == expected) return;
+    refuse_equal(r, field, v, expected, unit, from);
+  }
+  [[gnu::noinline, gnu::cold]] void refuse_equal(const RecordRef& r, const char* field, Q32 v, Q32 expected,
+                                                 const char* unit, const char* from) {
     refuse(r, field,
            text(v, unit) + " does not match the value derived from " + from + " (" + text(expected, unit) +
                "); restore refuses inconsistent cached state");
@@ -1053,24 +1062,28 @@ void check_contacts(ImageChecker& c) {
       const ManifoldPoint& p = ct.manifold.points[static_cast<size_t>(k)];
       const Q32 wmax = k_max_restored_coordinate;
       const Q32 amax = k_max_restored_anchor;
-      c.range(r, point_name(k, 0), p.point.x, -wmax, wmax, "m");
-      c.range(r, point_name(k, 1), p.point.y, -wmax, wmax, "m");
-      c.range(r, point_name(k, 2), p.anchor_a.x, -amax, amax, "m");
-      c.range(r, point_name(k, 3), p.anchor_a.y, -amax, amax, "m");
-      c.range(r, point_name(k, 4), p.anchor_b.x, -amax, amax, "m");
-      c.range(r, point_name(k, 5), p.anchor_b.y, -amax, amax, "m");
-      c.range(r, point_name(k, 6), p.separation, -amax, amax, "m");
+      // (Field names are looked up only on failure.)
+      const auto check = [&](int32_t which, Q32 v, Q32 lim, const char* unit) {
+        if (-lim <= v && v <= lim) return;
+        c.refuse_range(r, point_name(k, which), v, -lim, lim, unit, false);
+      };
+      check(0, p.point.x, wmax, "m");
+      check(1, p.point.y, wmax, "m");
+      check(2, p.anchor_a.x, amax, "m");
+      check(3, p.anchor_a.y, amax, "m");
+      check(4, p.anchor_b.x, amax, "m");
+      check(5, p.anchor_b.y, amax, "m");
+      check(6, p.separation, amax, "m");
       const Q32 jmax = k_max_restored_impulse;
       const Q32 jn = ct.normal_impulse[static_cast<size_t>(k)];
       const Q32 jt = ct.tangent_impulse[static_cast<size_t>(k)];
-      c.range(r, point_name(k, 8), jn, -jmax, jmax, "N·s");
-      c.range(r, point_name(k, 9), jt, -jmax, jmax, "N·s");
+      check(8, jn, jmax, "N·s");
+      check(9, jt, jmax, "N·s");
       if (c.failed()) return;
       // What the warm start applies to each body, summed over its contacts
       // (checked after each impulse, so the one that crosses is named).
       for (int32_t which = 0; which < 2; ++which) {
         const Q32 j = abs(which == 0 ? jn : jt);
-        const char* field = point_name(k, which == 0 ? 8 : 9);
         for (const int32_t b : {ct.body_a, ct.body_b}) {
           const size_t bi = static_cast<size_t>(b);
           if (img.body_pool.alive[bi] == 0) continue;
@@ -1081,7 +1094,7 @@ void check_contacts(ImageChecker& c) {
           const Q32 dv = mul_quiet(sum, sim.inv_mass);
           const Q32 dw = mul_quiet(mul_quiet(sum, sim.inv_inertia), lever);
           if (dv > k_max_warm_start_velocity_change || dw > k_max_warm_start_velocity_change) {
-            c.refuse(r, field,
+            c.refuse(r, point_name(k, which == 0 ? 8 : 9),
                      "brings the stored impulses on body " + std::to_string(b) + " to " + to_string(sum) +
                          " N·s, a warm-start velocity change of " + to_string(max(dv, dw)) + " m/s, above " +
                          to_string(k_max_warm_start_velocity_change) + " m/s");

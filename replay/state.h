@@ -42,25 +42,35 @@
 //
 // RESTORE decodes the whole image into scratch, validates it and only then
 // replaces the world's state, so a refused image leaves the world untouched.
-// Structure: enum values, index ranges, shape lists consistent with bodies,
-// contacts sorted, no raw INT64_MIN, non-degenerate radii and segments,
-// nothing left over; every count is checked against the bytes left before
-// anything is allocated for it. Values: every field against the limits the
-// API enforces when the value enters a world (limits.h, tandem.h: world
-// settings, positions, speeds, damping, forces, materials, geometry reach,
-// sleep timers, impulses), widened only where a legal step carries a value
-// past its entry limit (speeds after a contact solve: ×4; positions of a body
-// that left the bounds: ±2·k_max_world_coordinate); rotations and normals
-// unit within 2^-16. Derived values: shape bounds, body mass, inertia, their
-// inverses, the centre of mass (local and world) and the continuous-collision
-// extents are recomputed from the image and must match bit for bit, so a
-// crafted image cannot feed the broad phase an inverted box or the solver a
-// mass its shapes do not have. A refusal names the byte offset, the record
-// ("body 12", "shape 3", "contact 5 (shapes 2, 9)", "world"), the field, its
-// value and the allowed range. Within these limits no arithmetic path wraps
-// or saturates, so every build (x86-64 release, portable 128-bit, debug)
-// computes the same bits from an accepted image. Handles stay valid: indices,
-// generations and alive flags are those of the snapshot.
+//   Structure: enum values, index ranges, shape lists consistent with
+//   bodies, contacts sorted, no raw INT64_MIN, non-degenerate radii and
+//   segments, nothing left over; every count is checked against the bytes
+//   left before anything is allocated for it.
+//   Values: every field against the limits the API enforces when the value
+//   enters a world (limits.h, tandem.h: world settings, positions, speeds,
+//   damping, forces, materials, geometry reach, sleep timers), widened only
+//   where a legal step carries a value past its entry limit: linear speeds
+//   after a contact solve ×4; a body that left the bounds (then disabled)
+//   within ±2·k_max_world_coordinate; |ω| above 4·k_max_angular_speed only
+//   while the rim speed |ω|·max_extent stays within 4·k_max_linear_speed.
+//   Stored contact impulses within ±4e8 N·s per point and, summed over a
+//   body's contacts, a warm-start velocity change (also at the rim) within
+//   2^27 m/s. Rotations and normals unit within 2^-16.
+//   Derived values: shape bounds, body mass, inertia, their inverses, the
+//   centre of mass (local and world) and the continuous-collision extents
+//   are recomputed from the image and must match bit for bit, so a crafted
+//   image cannot feed the broad phase an inverted box or the solver a mass
+//   its shapes do not have.
+// A refusal names the byte offset, the record ("body 12", "shape 3",
+// "contact 5 (shapes 2, 9)", "world"), the field, its value and the allowed
+// range. Within these limits no arithmetic path wraps or saturates, so every
+// build (x86-64 release, portable 128-bit, debug) computes the same bits from
+// an accepted image. Handles stay valid: indices, generations and alive
+// flags are those of the snapshot. Memory: a pool slot costs 5 image bytes
+// but a full record in the restored world (about 600 bytes per shape slot),
+// so an image of n bytes can make restore allocate up to ~120·n bytes (the
+// size of the world it describes; pools are capped at k_max_bodies and
+// k_max_shapes).
 //
 // HASH: XXH3-64 (seed 0) of the canonical encoding. Per-body hashes cover one
 // body's record followed by its shapes' records (the same bytes as in the
