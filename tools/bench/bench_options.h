@@ -31,6 +31,9 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
                  "the family; 0: no limit")
       ->check(CLI::Range(0, 1000000));
   app.add_flag("--peers,!--no-peers", o->peers, "also run Box2D 2.4 and Chipmunk2D (when linked in)");
+  app.add_option("--engines", o->engines,
+                 "run only these engines, e.g. tandem/grid,box2d3-w1 (names as in the table; peers need --peers)")
+      ->delimiter(',');
   app.add_flag("--profile", o->profile,
                "print Tandem's per-stage profile (median ms/step per stage over all timed steps) as a Markdown "
                "table; the JSON always has it");

@@ -470,6 +470,24 @@ int run_bench_suite(const BenchOptions& o) {
     if (peers.empty()) std::fprintf(stderr, "bench: no peers: %s\n", peers_unavailable_reason());
     for (Engine& e : peers) engines.push_back(std::move(e));
   }
+  if (!o.engines.empty()) {
+    for (const std::string& name : o.engines) {
+      const bool known = std::any_of(engines.begin(), engines.end(), [&](const Engine& e) {
+        return (e.is_peer ? e.engine : e.engine + "/" + e.broad_phase) == name;
+      });
+      if (!known) {
+        std::fprintf(stderr, "bench: --engines: '%s' is not among the engines selected (Tandem broad phases%s)\n",
+                     name.c_str(), o.peers ? " and the linked peers" : "; peers need --peers");
+        return 2;
+      }
+    }
+    std::vector<Engine> kept;
+    for (Engine& e : engines) {
+      const std::string name = e.is_peer ? e.engine : e.engine + "/" + e.broad_phase;
+      if (std::find(o.engines.begin(), o.engines.end(), name) != o.engines.end()) kept.push_back(std::move(e));
+    }
+    engines = std::move(kept);
+  }
   Machine machine = machine_now();
   machine.load_before = load_average();
 #ifndef NDEBUG

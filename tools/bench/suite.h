@@ -28,6 +28,8 @@ struct BenchOptions {
   int32_t warmup = -1;                    ///< warm-up steps; −1: the scene's default
   std::vector<std::string> broad_phases;  ///< Tandem broad phases (naive, sap, grid, tree, all); empty: all
   bool peers = false;                     ///< also run the peer engines (when linked in)
+  std::vector<std::string> engines;       ///< run only these rows ("tandem/grid", "box2d24", "box2d3-w1", ...);
+                                          ///< empty: all that the options above select
   int32_t naive_max = 4000;               ///< skip the naive broad phase above this many dynamic bodies
   int32_t max_run_seconds = 60;           ///< a run whose timed steps take longer ends that row after
                                           ///< it and skips the engine for larger scenes of the family; 0: off
