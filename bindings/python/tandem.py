@@ -27,7 +27,7 @@ loader's path (LD_LIBRARY_PATH, the install prefix's lib directory).
 import ctypes
 import os
 from ctypes import POINTER, Structure, byref, c_bool, c_char_p, c_double, c_int32, c_int64, c_size_t, c_uint8
-from ctypes import c_uint16, c_uint32, c_uint64, c_void_p
+from ctypes import c_uint16, c_uint32, c_uint64
 from fractions import Fraction
 
 __all__ = ["TandemError", "World", "Body", "Scene", "q", "to_text", "to_float", "Fraction", "STATIC", "KINEMATIC",

@@ -12,8 +12,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
-#include <utility>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "physics/tandem.h"
@@ -1239,4 +1240,22 @@ TEST_CASE("every status function refuses null and stale handles with a message",
   CHECK(tandem_world_get_broad_phase_stats(stale_world).pairs == 0);
   CHECK(!tandem_world_is_locked(stale_world));
   CHECK(tandem_last_error_code() == TANDEM_ERROR_INVALID_HANDLE);
+}
+
+TEST_CASE("the last error is per thread", "[capi]") {
+  require_error(tandem_world_check(tandem_world_id{}), TANDEM_ERROR_NULL_HANDLE, "null");
+  std::string other_message;
+  tandem_status other_code = -1;
+  std::thread other([&] {
+    tandem_q32 v = 0;
+    tandem_q32_from_text("oops", &v);  // a different error on another thread
+    other_code = tandem_last_error_code();
+    other_message = tandem_last_error_message();
+  });
+  other.join();
+  CHECK(other_code == TANDEM_ERROR_PARSE);
+  CHECK(other_message.find("oops") != std::string::npos);
+  // This thread's last error is still its own.
+  CHECK(tandem_last_error_code() == TANDEM_ERROR_NULL_HANDLE);
+  CHECK(last_message().find("null") != std::string::npos);
 }
