@@ -18,7 +18,8 @@
 #   --no-build    use the fuzzers already built in build/clang-fuzz
 #   --make-seeds  rewrite the committed seed corpora (tests/fuzz/corpus/) from
 #                 the bundled scenes, a replay recorded by the command line and
-#                 fuzz_make_seeds, then exit
+#                 fuzz_make_seeds, then exit (TANDEM_BIN=path/to/tandem
+#                 uses that command line instead of building one here)
 # Each target is seeded from tests/fuzz/corpus/<target>/ (scene also gets
 # tests/fuzz/scene.dict). A crash, leak, sanitizer report, timeout (> 10 s
 # per input) or out-of-memory (> 2 GB) stops that target and is kept as
@@ -26,9 +27,13 @@
 # tests/fuzz/regressions/<target>/ (tests/tools/test_fuzz_regressions.cpp
 # replays that folder in every build). Reproduce one with
 #   build/clang-fuzz/tests/fuzz/fuzz_<target> FILE
-# Exit status: 0 when no target found anything, 1 otherwise, 2 on bad usage
-# or a failed build. Prints "[fuzz.sh] result <target> pass|FAIL" per target
-# (scripts/test.sh counts those).
+# A target listed in tests/fuzz/known-crashes.txt (a crash in code another
+# change owns, saved as a .pending regression) reports a finding as "xfail"
+# instead of FAIL, and "XPASS" when it found nothing (remove its line then).
+# Exit status: 0 when no target found anything unexpected, 1 otherwise, 2 on
+# bad usage or a failed build. Prints "[fuzz.sh] result <target>
+# pass|FAIL|xfail|XPASS" per target (scripts/test.sh counts pass/XPASS as
+# passed, FAIL as failed, xfail as neither).
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 2
 
@@ -63,7 +68,8 @@ if [ $build -eq 1 ] || [ $make_seeds -eq 1 ]; then
   echo "[fuzz.sh] build: cmake --preset clang-fuzz; tandem_fuzzers"
   cmake --preset clang-fuzz >/dev/null || { echo "fuzz.sh: configure failed" >&2; exit 2; }
   extra=()
-  [ $make_seeds -eq 1 ] && extra=(fuzz_make_seeds tandem)
+  [ $make_seeds -eq 1 ] && extra=(fuzz_make_seeds)
+  [ $make_seeds -eq 1 ] && [ -z "${TANDEM_BIN:-}" ] && extra+=(tandem)
   cmake --build "$dir" -j 2 --target tandem_fuzzers "${extra[@]}" || { echo "fuzz.sh: build failed" >&2; exit 2; }
 fi
 
@@ -74,14 +80,13 @@ if [ $make_seeds -eq 1 ]; then
   "$dir"/tests/fuzz/fuzz_make_seeds "$corpus" || exit 2
   cp scenes/*.json "$corpus"/scene/
   cp tests/tools/data/*.json "$corpus"/scene/
-  tmp=$(mktemp -d)
+  tandem=${TANDEM_BIN:-$dir/tandem}  # any build's command line records the same bytes
   export ASAN_OPTIONS=detect_leaks=0
   for s in stack dominoes; do
-    "$dir"/tandem -q record "scenes/$s.json" --ticks 12 --keyframe-every 6 -o "$corpus/replay_file/$s.tdr" || exit 2
-    "$dir"/tandem -q replay "$corpus/replay_file/$s.tdr" --save-state "$corpus/snapshot/$s.state" >/dev/null || exit 2
+    "$tandem" -q record "scenes/$s.json" --ticks 12 --keyframe-every 6 -o "$corpus/replay_file/$s.tdr" || exit 2
+    "$tandem" -q replay "$corpus/replay_file/$s.tdr" --save-state "$corpus/snapshot/$s.state" >/dev/null || exit 2
   done
-  "$dir"/tandem -q record scenes/impulses.json --ticks 40 --keyframe-every 0 -o "$corpus/replay_file/impulses.tdr" || exit 2
-  rm -rf "$tmp"
+  "$tandem" -q record scenes/impulses.json --ticks 40 --keyframe-every 0 -o "$corpus/replay_file/impulses.tdr" || exit 2
   du -sh "$corpus"
   exit 0
 fi
@@ -118,12 +123,22 @@ for t in "${targets[@]}"; do
   cov=$(sed -nE 's/.* cov: ([0-9]+).*/\1/p' <<<"$last")
   ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
   corpus_n=$(ls "$work" | wc -l)
+  known=0
+  grep -qE "^$t[[:space:]]" tests/fuzz/known-crashes.txt 2>/dev/null && known=1
   if [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
-    result=FAIL
-    found=1
     [ "$new" -gt 0 ] || new=1
     grep -E 'ERROR: |SUMMARY: |runtime error|fuzz invariant broken|deadly signal|Test unit written' "$log" | head -8
     echo "[fuzz.sh] $t: found something (exit $rc); log $log, inputs in $crashes/"
+    if [ $known -eq 1 ]; then
+      result=xfail
+      echo "[fuzz.sh] $t: expected (tests/fuzz/known-crashes.txt): $(sed -nE "s/^$t[[:space:]]+//p" tests/fuzz/known-crashes.txt)"
+    else
+      result=FAIL
+      found=1
+    fi
+  elif [ $known -eq 1 ]; then
+    result=XPASS
+    echo "[fuzz.sh] $t: found nothing, but tests/fuzz/known-crashes.txt expects a crash: remove its line if the fix landed"
   else
     result=pass
   fi

@@ -105,9 +105,10 @@ TEST_CASE("fuzz targets: refusals name where and what") {
   const fuzz::Outcome dec = fuzz::run_decimal(std::span(reinterpret_cast<const uint8_t*>(bad_number.data()), bad_number.size()));
   REQUIRE_FALSE(dec.accepted);
   CHECK(dec.error.find("offset 4") != std::string::npos);
-  const std::vector<uint8_t> one_command = {1, 0, 0, 0, 99};  // count 1, type 99
+  const std::vector<uint8_t> one_command = {1, 0, 0, 0, 99, 0, 0, 0, 0};  // count 1, type 99
   const fuzz::Outcome cmd = fuzz::run_commands(one_command);
   REQUIRE_FALSE(cmd.accepted);
+  INFO(cmd.error);
   CHECK(cmd.error.find("offset 4") != std::string::npos);
   CHECK(cmd.error.find("command type") != std::string::npos);
   const std::vector<uint8_t> garbage = {'n', 'o', 't', ' ', 'a', ' ', 'r', 'e', 'p', 'l', 'a', 'y'};
