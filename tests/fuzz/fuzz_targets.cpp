@@ -16,6 +16,9 @@
 #include "replay/state.h"
 #include "scene/scene.h"
 
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
 namespace tandem::fuzz {
 namespace {
 
@@ -52,13 +55,56 @@ void step(WorldId world, int n) {
   for (int i = 0; i < n; ++i) (void)world_step(world, k_dt);
 }
 
+uint32_t get_u32(const std::vector<uint8_t>& b, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | b[at + static_cast<size_t>(i)];
+  return v;
+}
+void put_u32(std::vector<uint8_t>* b, size_t at, uint32_t v) {
+  for (size_t i = 0; i < 4; ++i) (*b)[at + i] = static_cast<uint8_t>(v >> (8 * i));
+}
+void put_u64(std::vector<uint8_t>* b, size_t at, uint64_t v) {
+  for (size_t i = 0; i < 8; ++i) (*b)[at + i] = static_cast<uint8_t>(v >> (8 * i));
+}
+
+// Rewrites every checksum of a replay image to match its bytes: each chunk's
+// header check (XXH3 of type and length) and payload checksum, and each KEYF
+// chunk's state image hash (layout: replay/replay_file.h). So mutations reach
+// the decoders behind the checksums instead of stopping at them; stops at the
+// first chunk that does not fit.
+std::vector<uint8_t> with_valid_checksums(std::span<const uint8_t> data) {
+  std::vector<uint8_t> b(data.begin(), data.end());
+  size_t at = 12;  // magic, format version
+  while (at + k_chunk_header_bytes <= b.size()) {
+    const uint32_t type = get_u32(b, at), length = get_u32(b, at + 4);
+    uint8_t tl[8];
+    for (size_t i = 0; i < 4; ++i) tl[i] = static_cast<uint8_t>(type >> (8 * i)), tl[4 + i] = static_cast<uint8_t>(length >> (8 * i));
+    put_u32(&b, at + 8, static_cast<uint32_t>(XXH3_64bits(tl, 8)));
+    const size_t payload = at + k_chunk_header_bytes;
+    if (length > b.size() - payload || b.size() - payload - length < 8) break;
+    if (type == k_chunk_keyframe && length >= 20) {
+      const uint32_t n = get_u32(b, payload + 16);
+      if (n <= length - 20) put_u64(&b, payload + 8, XXH3_64bits(b.data() + payload + 20, n));
+    }
+    put_u64(&b, payload + length, XXH3_64bits(b.data() + payload, length));
+    at = payload + length + 8;
+  }
+  return b;
+}
+
 }  // namespace
 
 Outcome run_replay_file(std::span<const uint8_t> data) {
   setup_faults();
+  // The bytes as given (so the checksum refusals are exercised), then with
+  // every checksum made to match (so the decoders behind them are).
+  Replay raw;
+  const Status raw_status = read_replay(data, &raw);
+  if (!raw_status.ok() && raw_status.message.empty()) broken("a refusal without a message");
+  const std::vector<uint8_t> fixed = with_valid_checksums(data);
   Replay replay;
   ReplayReadInfo info;
-  const Status st = read_replay(data, &replay, &info);
+  const Status st = read_replay(fixed, &replay, &info);
   if (!st.ok()) return refused(st.message);
   if (replay.keyframes.empty()) return Outcome{true, {}};
   const uint64_t tick = replay.tick_count() < 30 ? replay.tick_count() : 30;

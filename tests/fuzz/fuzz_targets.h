@@ -32,8 +32,11 @@ struct Target {
   Outcome (*run)(std::span<const uint8_t> data);
 };
 
-/// read_replay; when accepted, a world is made at tick min(ticks, 30) (restore
-/// of the nearest keyframe, then the recorded ticks).
+/// read_replay of the bytes as given, then of a copy whose checksums (chunk
+/// header checks, chunk checksums, keyframe image hashes) are rewritten to
+/// match, so mutations get past them; when that is accepted, a world is made
+/// at tick min(ticks, 30) (restore of the nearest keyframe, then the recorded
+/// ticks) and stepped twice. The outcome is the second read's.
 Outcome run_replay_file(std::span<const uint8_t> data);
 /// create_world_from_snapshot; when accepted, 30 steps of 1/60 s.
 Outcome run_snapshot(std::span<const uint8_t> data);
