@@ -36,7 +36,8 @@ struct Target {
 /// header checks, chunk checksums, keyframe image hashes) are rewritten to
 /// match, so mutations get past them; when that is accepted, a world is made
 /// at tick min(ticks, 30) (restore of the nearest keyframe, then the recorded
-/// ticks) and stepped twice. The outcome is the second read's.
+/// ticks) and stepped twice (not with TANDEM_FUZZ_REPLAY_READ_ONLY set in the
+/// environment). The outcome is the second read's.
 Outcome run_replay_file(std::span<const uint8_t> data);
 /// create_world_from_snapshot; when accepted, 30 steps of 1/60 s.
 Outcome run_snapshot(std::span<const uint8_t> data);
