@@ -138,7 +138,7 @@ for t in "${targets[@]}"; do
     fi
   elif [ $known -eq 1 ]; then
     result=XPASS
-    echo "[fuzz.sh] $t: found nothing, but tests/fuzz/known-crashes.txt expects a crash: remove its line if the fix landed"
+    echo "[fuzz.sh] $t: found nothing this time, though tests/fuzz/known-crashes.txt lists a crash (its .pending regression reproduces it; remove the line once the fix has landed)"
   else
     result=pass
   fi

@@ -7,9 +7,9 @@
 // working).
 //
 // A file whose name ends in ".pending" crashes today in code another change
-// owns (it is named in that file's comment in tests/fuzz/README.md); it is
-// listed and skipped, never run, until that fix lands and the suffix is
-// dropped.
+// owns (tests/fuzz/known-crashes.txt says which and why); it is listed as
+// skipped, never run, until that fix lands: then drop the suffix (and the
+// target's line in known-crashes.txt) so it is replayed like the others.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
