@@ -137,7 +137,7 @@ run_build() {
     elif [ "$failed" -gt 0 ]; then
       result="fuzz FOUND CRASHES"
     elif [ "$xfail" -gt 0 ]; then
-      result="ok ($xfail known crash)"
+      result="ok, $xfail xfail"
     fi
   elif [ "$result" = ok ]; then
     t0=$(now)

@@ -398,3 +398,23 @@ TEST_CASE("scene limits: shapes are counted per template, explicit bodies too") 
                          SceneLimits{}),
              Catch::Contains("/generators/0/base: expected an integer in [1, 1000]"));
 }
+
+TEST_CASE("scene limits: a chain in a template counts one shape per point") {
+  // A 50-point chain copied 100 times is 5000 segments, not 100 shapes.
+  std::string points;
+  for (int i = 0; i < 50; ++i) points += std::string(i ? ", " : "") + "[" + std::to_string(i) + ", 0]";
+  const std::string g = R"({"type": "grid", "columns": 10, "rows": 10, "spacing": [100, 100], "body": {"shapes": [)"
+                        R"({"type": "chain", "points": [)" + points + "]}]}}";
+  SceneLimits limits;
+  limits.max_shapes = 4999;
+  CHECK_THAT(limit_error(scene_with(g), limits),
+             Catch::Contains("/generators/0: the grid generator asks for 100 bodies × 50 shapes = 5000 shapes"));
+  limits.max_shapes = 5000;
+  Result<Scene> ok = load_scene_text(scene_with(g), "chains.json", limits);
+  INFO(ok.status.message);
+  CHECK(ok.ok());
+  // Explicit bodies: their chains count the same way.
+  limits.max_shapes = 49;
+  CHECK_THAT(limit_error(R"({"bodies": [{"shapes": [{"type": "chain", "points": [)" + points + "]}]}]}", limits),
+             Catch::Contains("/bodies: the scene's bodies have 50 shapes; the limit is 49"));
+}

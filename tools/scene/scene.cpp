@@ -401,7 +401,6 @@ struct SplitMix64 {
   }
 };
 
-
 // Generated coordinates are computed on raw values with overflow checks: a
 // far-out origin or spacing is an error naming the generator, never a
 // saturation (which stops debug builds).
@@ -538,12 +537,13 @@ void expand_random(const Obj& g, std::vector<SceneBody>* out) {
 }
 
 // What a generator asks for, read from its parameters alone (nothing is
-// expanded): bodies, and shapes per body (the template's "shapes" array; the
-// random generator makes one). Parameters are checked as expansion checks
-// them, so an error names the same key either way.
+// expanded): bodies, and shapes per body (the template's "shapes" array, a
+// chain counting one per point; the random generator makes one). Parameters
+// are checked as expansion checks them, so an error names the same key
+// either way.
 struct GeneratorSize {
   std::string type;
-  std::string detail;  // "1000 × 1000", for the error message
+  std::string detail;  // "1000 columns × 1000 rows = ", for the error message
   int64_t bodies = 0;
   int64_t shapes_per_body = 0;
 };
@@ -555,6 +555,19 @@ std::string generator_type(const JsonValue& v, const std::string& path) {
     if (v.keys[i] == "type") type = read_enum(v.items[i], path + "/type", {"grid", "pyramid", "random"});
   if (type.empty()) fail(path, "missing key \"type\" (one of \"grid\", \"pyramid\" or \"random\")");
   return type;
+}
+
+// What one shape of a template costs against max_shapes: a chain one per
+// point (each point pair becomes a segment), anything else 1.
+int64_t shape_weight(const JsonValue& shape) {
+  if (shape.kind != JsonValue::Kind::object) return 1;
+  for (size_t i = 0; i < shape.keys.size(); ++i)
+    if (shape.keys[i] == "points" && shape.items[i].kind == JsonValue::Kind::array) {
+      for (size_t t = 0; t < shape.keys.size(); ++t)
+        if (shape.keys[t] == "type" && shape.items[t].kind == JsonValue::Kind::string && shape.items[t].text == "chain")
+          return std::max<int64_t>(1, static_cast<int64_t>(shape.items[i].items.size()));
+    }
+  return 1;
 }
 
 GeneratorSize generator_size(const JsonValue& v, const std::string& path) {
@@ -586,7 +599,7 @@ GeneratorSize generator_size(const JsonValue& v, const std::string& path) {
       const JsonValue& body = v.items[i];
       for (size_t k = 0; k < body.keys.size(); ++k)
         if (body.keys[k] == "shapes" && body.items[k].kind == JsonValue::Kind::array)
-          n.shapes_per_body = static_cast<int64_t>(body.items[k].items.size());
+          for (const JsonValue& shape : body.items[k].items) n.shapes_per_body += shape_weight(shape);
     }
   }
   return n;
@@ -603,7 +616,9 @@ void check_scene_size(const std::vector<SceneBody>& explicit_bodies, const JsonV
   const std::string raise_shapes = " (raise it with --max-shapes or SceneLimits::max_shapes)";
   int64_t bodies = static_cast<int64_t>(explicit_bodies.size());
   int64_t shapes = 0;
-  for (const SceneBody& b : explicit_bodies) shapes += static_cast<int64_t>(b.shapes.size());
+  for (const SceneBody& b : explicit_bodies)
+    for (const ShapeSpec& shape : b.shapes)
+      shapes += shape.kind == ShapeKind::chain ? std::max<int64_t>(1, static_cast<int64_t>(shape.chain_points.size())) : 1;
   if (bodies > max_bodies)
     fail("/bodies", "the scene lists " + std::to_string(bodies) + " bodies; the limit is " +
                         std::to_string(max_bodies) + raise_bodies);

@@ -80,7 +80,7 @@ inline constexpr int64_t k_default_scene_max_shapes = 400000;
 /// k_max_shapes are lowered to them.
 struct SceneLimits {
   int64_t max_bodies = k_default_scene_max_bodies;  ///< bodies in all, ≥ 0
-  int64_t max_shapes = k_default_scene_max_shapes;  ///< shapes in all, ≥ 0
+  int64_t max_shapes = k_default_scene_max_shapes;  ///< shapes in all (a chain: one per point), ≥ 0
 };
 
 /// Parses scene text; `name` (usually the file path) prefixes every error.
