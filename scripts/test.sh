@@ -15,6 +15,10 @@
 #                    (not in the default list: its build is the slowest; run it by
 #                    name after `scripts/setup-deps.sh matrix`, or use tools/matrix.sh)
 #   wasm32           wasm32-wasi under node; golden chains + fixed golden hash
+#   fuzz             clang 14 libFuzzer targets (preset clang-fuzz, tests/fuzz/):
+#                    each runs for a short slice (TANDEM_FUZZ_SLICE seconds,
+#                    default 15) through scripts/fuzz.sh; each target counts
+#                    as one test, passed when it found nothing
 # (golden chains: tests/golden, the 13 scenes' hash chains; the native builds
 # also run their broad-phase and snapshot/restore variants. The full
 # cross-platform matrix is tools/matrix.sh, not run here: docs/determinism.md.)
@@ -28,13 +32,13 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 1
 
-all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 wasm32)
+all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 wasm32 fuzz)
 clean=0
 builds=()
 for arg in "$@"; do
   case "$arg" in
     --clean) clean=1 ;;
-    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
     *) builds+=("$arg") ;;
   esac
@@ -67,7 +71,7 @@ summary=()
 
 # run_build NAME: configure, build and test one preset; appends to summary.
 run_build() {
-  local name=$1 dir=build/$1 result=ok passed=0 failed=0
+  local name=$1 preset=$1 dir=build/$1 result=ok passed=0 failed=0
   local t_cfg=0 t_bld=0 t_tst=0 t0 b0 log
   local build_args=() ctest_args=()
   case "$name" in
@@ -80,6 +84,10 @@ run_build() {
       build_args=(--target tandem_tests_fixed tandem_tests_golden)
       ctest_args=(-R '^golden/golden chain: [a-z_0-9]+$|^fixed/fixed_math gives the same bits') ;;
     gcc-release) ;;  # the one build that also runs the determinism lint
+    # The fuzzers: built from preset clang-fuzz, "tested" by short runs.
+    fuzz)
+      preset=clang-fuzz dir=build/clang-fuzz
+      build_args=(--target tandem_fuzzers) ;;
     *) ctest_args=(-E '^determinism lint') ;;
   esac
 
@@ -93,8 +101,8 @@ run_build() {
   fi
 
   t0=$(now)
-  echo "[test.sh] $name: configure (cmake --preset $name)"
-  if ! cmake --preset "$name"; then
+  echo "[test.sh] $name: configure (cmake --preset $preset)"
+  if ! cmake --preset "$preset"; then
     result="configure FAILED"
   fi
   t_cfg=$(( $(now) - t0 ))
@@ -110,7 +118,28 @@ run_build() {
     echo "[test.sh] $name: build: ${t_bld} s"
   fi
 
-  if [ "$result" = ok ]; then
+  if [ "$result" = ok ] && [ "$name" = fuzz ]; then
+    t0=$(now)
+    log=$dir/fuzz-slice-output.txt
+    echo "[test.sh] $name: scripts/fuzz.sh --seconds ${TANDEM_FUZZ_SLICE:-15} (each target)"
+    bash scripts/fuzz.sh --no-build --seconds "${TANDEM_FUZZ_SLICE:-15}" --out "$dir/fuzz-slice" 2>&1 | tee "$log"
+    t_tst=$(( $(now) - t0 ))
+    echo "[test.sh] $name: fuzz slice: ${t_tst} s"
+    # pass/XPASS: passed; FAIL: failed; xfail (a crash listed in
+    # tests/fuzz/known-crashes.txt, owned by another change): neither.
+    passed=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ (pass|XPASS)$' "$log")
+    failed=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ FAIL$' "$log")
+    local xfail
+    xfail=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ xfail$' "$log")
+    if [ $(( passed + failed + xfail )) -eq 0 ]; then
+      failed=1
+      result="fuzz FAILED (no result)"
+    elif [ "$failed" -gt 0 ]; then
+      result="fuzz FOUND CRASHES"
+    elif [ "$xfail" -gt 0 ]; then
+      result="ok, $xfail xfail"
+    fi
+  elif [ "$result" = ok ]; then
     t0=$(now)
     log=$dir/ctest-output.txt
     echo "[test.sh] $name: ctest"

@@ -45,6 +45,14 @@ tandem_cli_test(run-profile-same-hash 0 "run|scenes/impulses.json|--quiet|--prof
   SAME "run|scenes/impulses.json|--quiet")
 tandem_cli_test(run-missing-scene-arg 2 "run" ERR "scene is required")
 tandem_cli_test(run-bad-broadphase 2 "run|scenes/stack.json|--broadphase|quadtree" ERR "quadtree not in")
+# A 142-byte scene asking for 10^6 bodies is refused before expansion; the
+# limit is a global option, and raising it below the request still refuses.
+tandem_cli_test(run-scene-over-body-limit 2 "run|${tandem_cli_data}/huge_grid.json"
+  ERR "huge_grid.json: /generators/0: the grid generator asks for 1000 columns × 1000 rows = 1000000 bodies, over the limit of 100000 bodies per scene \\(raise it with --max-bodies")
+tandem_cli_test(run-scene-max-bodies-flag 2 "run|${tandem_cli_data}/huge_grid.json|--max-bodies|999999"
+  ERR "over the limit of 999999 bodies")
+tandem_cli_test(run-scene-max-bodies-lowered 2 "--max-bodies|5|run|scenes/stack.json" ERR "asks for 1 columns × 12 rows = 12 bodies, on top of 1 before it, over the limit of 5")
+tandem_cli_test(run-scene-max-shapes-flag 2 "run|scenes/pyramid.json|--max-shapes|100" ERR "over the limit of 100 shapes")
 tandem_cli_test(run-negative-ticks 2 "run|scenes/stack.json|--ticks|-5" ERR "ticks")
 tandem_cli_test(run-missing-file 2 "run|scenes/no-such-scene.json" ERR "no-such-scene.json: cannot open the file")
 tandem_cli_test(run-malformed 2 "run|${tandem_cli_data}/malformed.json"

@@ -294,3 +294,127 @@ TEST_CASE("the README's scene example loads and runs") {
   CHECK(s.bodies.size() == 52);  // ground, ball and 50 generated bodies
   (void)run_hash(s, 120);
 }
+
+// --- size limits: every generator is counted before anything is expanded ----
+
+namespace {
+
+// A scene with `generator` (JSON object text) after `explicit_bodies` bodies.
+std::string scene_with(const std::string& generator, int explicit_bodies = 0) {
+  std::string bodies;
+  for (int i = 0; i < explicit_bodies; ++i)
+    bodies += std::string(i ? ", " : "") + R"({"position": [0, )" + std::to_string(i) + "]}";
+  return R"({"bodies": [)" + bodies + R"(], "generators": [)" + generator + "]}";
+}
+
+const std::string k_template = R"("body": {"type": "dynamic", "shapes": [{"type": "circle", "radius": 0.5}]})";
+
+std::string limit_error(const std::string& text, const SceneLimits& limits) {
+  Result<Scene> r = load_scene_text(text, "big.json", limits);
+  REQUIRE_FALSE(r.ok());
+  return r.status.message;
+}
+
+}  // namespace
+
+TEST_CASE("scene limits: a 155-byte grid of 10^6 bodies is refused before it is expanded") {
+  const std::string text = R"({"generators": [{"type": "grid", "columns": 1000, "rows": 1000, "spacing": [1, 1],)"
+                           R"( "body": {"shapes": [{"type": "circle", "radius": 0.4}]}}]})";
+  CHECK(text.size() < 160);
+  const std::string e = limit_error(text, SceneLimits{});
+  CHECK_THAT(e, Catch::StartsWith("big.json: /generators/0: the grid generator asks for 1000 columns × 1000 rows = "
+                                  "1000000 bodies"));
+  CHECK_THAT(e, Catch::Contains("limit of 100000 bodies") && Catch::Contains("--max-bodies"));
+}
+
+TEST_CASE("scene limits: every generator kind is bounded, and the limit can be raised") {
+  struct Case {
+    std::string generator;
+    int64_t bodies;
+    std::string detail;
+  };
+  const std::vector<Case> cases = {
+      {R"({"type": "grid", "columns": 30, "rows": 20, "spacing": [2, 2], )" + k_template + "}", 600,
+       "30 columns × 20 rows = 600 bodies"},
+      {R"({"type": "pyramid", "base": 40, "spacing": [1.1, 1], )" + k_template + "}", 820, "base 40: 820 bodies"},
+      {R"({"type": "random", "count": 500, "size_min": 0.1, "size_max": 0.2,)"
+       R"( "region": {"lower": [-100, 0], "upper": [100, 100]}})",
+       500, "count 500 bodies"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.generator);
+    SceneLimits tight;
+    tight.max_bodies = c.bodies - 1;
+    const std::string e = limit_error(scene_with(c.generator), tight);
+    CHECK_THAT(e, Catch::Contains("/generators/0: ") && Catch::Contains(c.detail) &&
+                      Catch::Contains("limit of " + std::to_string(c.bodies - 1) + " bodies"));
+    // With explicit bodies before it, the message says so and counts them.
+    SceneLimits exact;
+    exact.max_bodies = c.bodies + 2;
+    const std::string e2 = limit_error(scene_with(c.generator, 3), exact);
+    CHECK_THAT(e2, Catch::Contains("on top of 3 before it"));
+    // Exactly at the limit it loads, with that many bodies.
+    Result<Scene> ok = load_scene_text(scene_with(c.generator, 2), "big.json", exact);
+    INFO(ok.status.message);
+    REQUIRE(ok.ok());
+    CHECK(static_cast<int64_t>(ok.value.bodies.size()) == c.bodies + 2);
+  }
+}
+
+TEST_CASE("scene limits: shapes are counted per template, explicit bodies too") {
+  const std::string two_shapes = R"("body": {"shapes": [{"type": "circle", "radius": 0.2},)"
+                                 R"( {"type": "box", "half_width": 0.2, "half_height": 0.2}]})";
+  SceneLimits limits;
+  limits.max_shapes = 99;
+  const std::string e = limit_error(
+      scene_with(R"({"type": "grid", "columns": 10, "rows": 5, "spacing": [1, 1], )" + two_shapes + "}"), limits);
+  CHECK_THAT(e, Catch::Contains("/generators/0: the grid generator asks for 50 bodies × 2 shapes = 100 shapes") &&
+                    Catch::Contains("limit of 99 shapes") && Catch::Contains("--max-shapes"));
+  limits.max_shapes = 100;
+  CHECK(load_scene_text(scene_with(R"({"type": "grid", "columns": 10, "rows": 5, "spacing": [1, 1], )" + two_shapes +
+                                   "}"),
+                        "big.json", limits)
+            .ok());
+  // Explicit bodies over the limit: named by their array.
+  SceneLimits one;
+  one.max_bodies = 1;
+  CHECK_THAT(limit_error(R"({"bodies": [{}, {}]})", one),
+             Catch::Contains("/bodies: the scene lists 2 bodies; the limit is 1"));
+  // Two generators: the second one is named, with what came before it.
+  SceneLimits hundred;
+  hundred.max_bodies = 100;
+  const std::string g = R"({"type": "grid", "columns": 10, "rows": 6, "spacing": [1, 1], )" + k_template + "}";
+  CHECK_THAT(limit_error(scene_with(g + ", " + g), hundred),
+             Catch::Contains("/generators/1: ") && Catch::Contains("60 bodies, on top of 60 before it"));
+  // The engine's limit caps a raised limit.
+  SceneLimits huge;
+  huge.max_bodies = INT64_MAX;
+  CHECK_THAT(limit_error(scene_with(R"({"type": "grid", "columns": 1000000, "rows": 1000000, "spacing": [1, 1], )" +
+                                    k_template + "}"),
+                         huge),
+             Catch::Contains("limit of 16777216 bodies"));
+  // A bad count is still named as before (the same range as expansion).
+  CHECK_THAT(limit_error(scene_with(R"({"type": "pyramid", "base": 1001, "spacing": [1, 1], )" + k_template + "}"),
+                         SceneLimits{}),
+             Catch::Contains("/generators/0/base: expected an integer in [1, 1000]"));
+}
+
+TEST_CASE("scene limits: a chain in a template counts one shape per point") {
+  // A 50-point chain copied 100 times is 5000 segments, not 100 shapes.
+  std::string points;
+  for (int i = 0; i < 50; ++i) points += std::string(i ? ", " : "") + "[" + std::to_string(i) + ", 0]";
+  const std::string g = R"({"type": "grid", "columns": 10, "rows": 10, "spacing": [100, 100], "body": {"shapes": [)"
+                        R"({"type": "chain", "points": [)" + points + "]}]}}";
+  SceneLimits limits;
+  limits.max_shapes = 4999;
+  CHECK_THAT(limit_error(scene_with(g), limits),
+             Catch::Contains("/generators/0: the grid generator asks for 100 bodies × 50 shapes = 5000 shapes"));
+  limits.max_shapes = 5000;
+  Result<Scene> ok = load_scene_text(scene_with(g), "chains.json", limits);
+  INFO(ok.status.message);
+  CHECK(ok.ok());
+  // Explicit bodies: their chains count the same way.
+  limits.max_shapes = 49;
+  CHECK_THAT(limit_error(R"({"bodies": [{"shapes": [{"type": "chain", "points": [)" + points + "]}]}]}", limits),
+             Catch::Contains("/bodies: the scene's bodies have 50 shapes; the limit is 49"));
+}

@@ -17,12 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace tandem::cli {
 
 /// Options every command shares.
 struct GlobalOptions {
   bool quiet = false;  ///< --quiet: no progress bar, only errors and the final result
   bool json = false;   ///< --json: machine-readable output on stdout
+  scene::SceneLimits scene_limits;  ///< --max-bodies / --max-shapes: what a scene file may ask for
 };
 
 /// One registered subcommand: its CLI11 node and what runs when it parsed.

@@ -61,11 +61,11 @@ struct LoadedScene {
   }
 };
 
-int load_scene(const char* command, const std::string& path, LoadedScene* out) {
+int load_scene(const char* command, const std::string& path, const scene::SceneLimits& limits, LoadedScene* out) {
   Status s = read_file_bytes(path, &out->text);
   if (!s.ok()) return fail(command, s.message);
   Result<scene::Scene> loaded =
-      scene::load_scene_text(std::string_view(reinterpret_cast<const char*>(out->text.data()), out->text.size()), path);
+      scene::load_scene_text(std::string_view(reinterpret_cast<const char*>(out->text.data()), out->text.size()), path, limits);
   if (!loaded.ok()) return fail(command, loaded.status.message);
   out->scene = std::move(loaded.value);
   Result<scene::BuiltScene> built = scene::build_world(out->scene);
@@ -110,7 +110,7 @@ struct RecordArgs {
 int run_record(const RecordArgs& a, const GlobalOptions& g) {
   const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
   LoadedScene s;
-  if (int rc = load_scene("record", a.scene, &s)) return rc;
+  if (int rc = load_scene("record", a.scene, g.scene_limits, &s)) return rc;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
   RecorderOptions options;
   options.keyframe_interval = a.keyframe_every;
@@ -360,7 +360,7 @@ struct SyncArgs {
 int run_sync(const SyncArgs& a, const GlobalOptions& g) {
   const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
   LoadedScene s;
-  if (int rc = load_scene("synctest", a.scene, &s)) return rc;
+  if (int rc = load_scene("synctest", a.scene, g.scene_limits, &s)) return rc;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
   if (ticks > INT32_MAX) return fail("synctest", "--ticks " + std::to_string(ticks) + " is too many (at most 2^31 - 1)");
   SyncTestOptions options;

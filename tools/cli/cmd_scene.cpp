@@ -99,8 +99,9 @@ struct Session {
   }
 };
 
-int open_session(const std::string& command, const std::string& path, const std::string& broad_phase, Session* s) {
-  Result<scene::Scene> loaded = scene::load_scene_file(path);
+int open_session(const std::string& command, const std::string& path, const std::string& broad_phase,
+                 const scene::SceneLimits& limits, Session* s) {
+  Result<scene::Scene> loaded = scene::load_scene_file(path, limits);
   if (!loaded.ok()) {
     std::fprintf(stderr, "tandem %s: %s\n", command.c_str(), loaded.status.message.c_str());
     return 2;
@@ -169,7 +170,7 @@ struct RunArgs {
 int run_run(const RunArgs& a, const GlobalOptions& g) {
   const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
   Session s;
-  if (int rc = open_session("run", a.scene, a.broad_phase, &s)) return rc;
+  if (int rc = open_session("run", a.scene, a.broad_phase, g.scene_limits, &s)) return rc;
   s.profiling = a.profile;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
   struct Mark {
@@ -288,7 +289,7 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
           scene::load_scene_text(std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), a.scene);
       if (embedded.ok()) s.scene.has_view = embedded.value.has_view, s.scene.view = embedded.value.view;
     }
-  } else if (int rc = open_session("render", a.scene, "", &s)) {
+  } else if (int rc = open_session("render", a.scene, "", g.scene_limits, &s)) {
     return rc;
   }
   const int64_t ticks = a.ticks >= 0 ? a.ticks : (a.tick >= 0 ? a.tick : s.scene.ticks);
@@ -382,7 +383,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
     if (!ec && relative.rfind("..", 0) != 0) path = relative;
   }
   Session s;
-  if (int rc = open_session("demo", path, "", &s)) return rc;
+  if (int rc = open_session("demo", path, "", g.scene_limits, &s)) return rc;
   if (!(a.seconds > 0 && a.seconds <= 3600)) {
     std::fprintf(stderr, "tandem demo: --seconds: expected a number in (0, 3600]\n");
     return 2;

@@ -318,6 +318,14 @@ int main(int argc, char** argv) {
   tandem::cli::GlobalOptions options;
   app.add_flag("--quiet,-q", options.quiet, "no progress output; only errors and the final result");
   app.add_flag("--json", options.json, "machine-readable output on stdout");
+  app.add_option("--max-bodies", options.scene_limits.max_bodies,
+                 "most bodies a scene file may have, generated ones included (default " +
+                     std::to_string(tandem::scene::k_default_scene_max_bodies) + ")")
+      ->check(CLI::Range(int64_t{0}, int64_t{tandem::k_max_bodies}));
+  app.add_option("--max-shapes", options.scene_limits.max_shapes,
+                 "most shapes a scene file may have (default " +
+                     std::to_string(tandem::scene::k_default_scene_max_shapes) + ")")
+      ->check(CLI::Range(int64_t{0}, int64_t{tandem::k_max_shapes}));
   std::vector<tandem::cli::Command> commands;
   tandem::cli::register_scene_commands(app, options, &commands);
   tandem::cli::register_replay_commands(app, options, &commands);

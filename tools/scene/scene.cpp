@@ -401,11 +401,6 @@ struct SplitMix64 {
   }
 };
 
-int64_t checked_count(int64_t a, int64_t b, const std::string& path) {
-  if (a * b > 1000000) fail(path, "generates more than 1000000 bodies");
-  return a * b;
-}
-
 // Generated coordinates are computed on raw values with overflow checks: a
 // far-out origin or spacing is an error naming the generator, never a
 // saturation (which stops debug builds).
@@ -442,7 +437,6 @@ void expand_grid(const Obj& g, std::vector<SceneBody>* out) {
   const Vec2 origin = g.find("origin") ? read_vec2(*g.find("origin"), g.at("origin")) : Vec2{};
   const int64_t cols = read_int(g.need("columns"), g.at("columns"), 1, 1000000);
   const int64_t rows = read_int(g.need("rows"), g.at("rows"), 1, 1000000);
-  checked_count(cols, rows, g.path());
   const Vec2 spacing = read_vec2(g.need("spacing"), g.at("spacing"));
   for (int64_t r = 0; r < rows; ++r)
     for (int64_t c = 0; c < cols; ++c)
@@ -542,12 +536,119 @@ void expand_random(const Obj& g, std::vector<SceneBody>* out) {
   }
 }
 
-void read_generator(const JsonValue& v, const std::string& path, std::vector<SceneBody>* out) {
+// What a generator asks for, read from its parameters alone (nothing is
+// expanded): bodies, and shapes per body (the template's "shapes" array, a
+// chain counting one per point; the random generator makes one). Parameters
+// are checked as expansion checks them, so an error names the same key
+// either way.
+struct GeneratorSize {
+  std::string type;
+  std::string detail;  // "1000 columns × 1000 rows = ", for the error message
+  int64_t bodies = 0;
+  int64_t shapes_per_body = 0;
+};
+
+std::string generator_type(const JsonValue& v, const std::string& path) {
   if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
   std::string type;
   for (size_t i = 0; i < v.keys.size(); ++i)
     if (v.keys[i] == "type") type = read_enum(v.items[i], path + "/type", {"grid", "pyramid", "random"});
   if (type.empty()) fail(path, "missing key \"type\" (one of \"grid\", \"pyramid\" or \"random\")");
+  return type;
+}
+
+// What one shape of a template costs against max_shapes: a chain one per
+// point (each point pair becomes a segment), anything else 1.
+int64_t shape_weight(const JsonValue& shape) {
+  if (shape.kind != JsonValue::Kind::object) return 1;
+  for (size_t i = 0; i < shape.keys.size(); ++i)
+    if (shape.keys[i] == "points" && shape.items[i].kind == JsonValue::Kind::array) {
+      for (size_t t = 0; t < shape.keys.size(); ++t)
+        if (shape.keys[t] == "type" && shape.items[t].kind == JsonValue::Kind::string && shape.items[t].text == "chain")
+          return std::max<int64_t>(1, static_cast<int64_t>(shape.items[i].items.size()));
+    }
+  return 1;
+}
+
+GeneratorSize generator_size(const JsonValue& v, const std::string& path) {
+  GeneratorSize n;
+  n.type = generator_type(v, path);
+  auto need = [&](const char* key) -> const JsonValue& {
+    for (size_t i = 0; i < v.keys.size(); ++i)
+      if (v.keys[i] == key) return v.items[i];
+    fail(path, std::string("missing key \"") + key + "\"");
+  };
+  if (n.type == "grid") {
+    const int64_t cols = read_int(need("columns"), path + "/columns", 1, 1000000);
+    const int64_t rows = read_int(need("rows"), path + "/rows", 1, 1000000);
+    n.bodies = cols * rows;  // ≤ 10^12
+    n.detail = std::to_string(cols) + " columns × " + std::to_string(rows) + " rows = ";
+  } else if (n.type == "pyramid") {
+    const int64_t base = read_int(need("base"), path + "/base", 1, 1000);
+    n.bodies = base * (base + 1) / 2;
+    n.detail = "base " + std::to_string(base) + ": ";
+  } else {
+    n.bodies = read_int(need("count"), path + "/count", 0, 1000000);
+    n.detail = "count ";
+  }
+  if (n.type == "random") {
+    n.shapes_per_body = 1;
+  } else {
+    for (size_t i = 0; i < v.keys.size(); ++i) {
+      if (v.keys[i] != "body" || v.items[i].kind != JsonValue::Kind::object) continue;
+      const JsonValue& body = v.items[i];
+      for (size_t k = 0; k < body.keys.size(); ++k)
+        if (body.keys[k] == "shapes" && body.items[k].kind == JsonValue::Kind::array)
+          for (const JsonValue& shape : body.items[k].items) n.shapes_per_body += shape_weight(shape);
+    }
+  }
+  return n;
+}
+
+// Refuses a scene whose bodies or shapes would pass `limits`, before any
+// generator is expanded. `explicit_bodies` are already read (their JSON text
+// holds them, so they cost no more than the text).
+void check_scene_size(const std::vector<SceneBody>& explicit_bodies, const JsonValue* generators,
+                      const std::string& generators_path, const SceneLimits& limits) {
+  const int64_t max_bodies = std::clamp<int64_t>(limits.max_bodies, 0, k_max_bodies);
+  const int64_t max_shapes = std::clamp<int64_t>(limits.max_shapes, 0, k_max_shapes);
+  const std::string raise_bodies = " (raise it with --max-bodies or SceneLimits::max_bodies)";
+  const std::string raise_shapes = " (raise it with --max-shapes or SceneLimits::max_shapes)";
+  int64_t bodies = static_cast<int64_t>(explicit_bodies.size());
+  int64_t shapes = 0;
+  for (const SceneBody& b : explicit_bodies)
+    for (const ShapeSpec& shape : b.shapes)
+      shapes += shape.kind == ShapeKind::chain ? std::max<int64_t>(1, static_cast<int64_t>(shape.chain_points.size())) : 1;
+  if (bodies > max_bodies)
+    fail("/bodies", "the scene lists " + std::to_string(bodies) + " bodies; the limit is " +
+                        std::to_string(max_bodies) + raise_bodies);
+  if (shapes > max_shapes)
+    fail("/bodies", "the scene's bodies have " + std::to_string(shapes) + " shapes; the limit is " +
+                        std::to_string(max_shapes) + raise_shapes);
+  if (generators == nullptr) return;
+  const auto& items = read_array(*generators, generators_path);
+  for (size_t i = 0; i < items.size(); ++i) {
+    const std::string path = generators_path + "/" + std::to_string(i);
+    const GeneratorSize n = generator_size(items[i], path);
+    if (n.bodies > max_bodies - bodies)
+      fail(path, "the " + n.type + " generator asks for " + n.detail + std::to_string(n.bodies) + " bodies, " +
+                     (bodies > 0 ? "on top of " + std::to_string(bodies) + " before it, " : std::string()) +
+                     "over the limit of " + std::to_string(max_bodies) + " bodies per scene" + raise_bodies);
+    bodies += n.bodies;
+    // n.bodies ≤ k_max_bodies (2^24) and shapes_per_body < 2^31 (an array in
+    // the text): the product fits.
+    const int64_t more = n.bodies * n.shapes_per_body;
+    if (more > max_shapes - shapes)
+      fail(path, "the " + n.type + " generator asks for " + std::to_string(n.bodies) + " bodies × " +
+                     std::to_string(n.shapes_per_body) + " shapes = " + std::to_string(more) + " shapes, " +
+                     (shapes > 0 ? "on top of " + std::to_string(shapes) + " before it, " : std::string()) +
+                     "over the limit of " + std::to_string(max_shapes) + " shapes per scene" + raise_shapes);
+    shapes += more;
+  }
+}
+
+void read_generator(const JsonValue& v, const std::string& path, std::vector<SceneBody>* out) {
+  const std::string type = generator_type(v, path);
   if (type == "grid") expand_grid(Obj(v, path, {&k_generator_grid_keys}), out);
   else if (type == "pyramid") expand_pyramid(Obj(v, path, {&k_generator_pyramid_keys}), out);
   else expand_random(Obj(v, path, {&k_generator_random_keys}), out);
@@ -660,7 +761,7 @@ SceneInput read_input(const JsonValue& v, const std::string& path, const std::ve
   return in;
 }
 
-Scene read_scene(const JsonValue& root) {
+Scene read_scene(const JsonValue& root, const SceneLimits& limits) {
   Obj o(root, "", {&k_top_keys});
   Scene s;
   opt(o, "format", [&](const JsonValue& v, const std::string& p) { read_enum(v, p, {k_scene_format}); });
@@ -691,11 +792,11 @@ Scene read_scene(const JsonValue& root) {
       s.bodies.push_back(std::move(b));
     }
   });
+  check_scene_size(s.bodies, o.find("generators"), o.at("generators"), limits);
   opt(o, "generators", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
     for (size_t i = 0; i < items.size(); ++i) read_generator(items[i], p + "/" + std::to_string(i), &s.bodies);
   });
-  if (s.bodies.size() > static_cast<size_t>(k_max_bodies)) fail("", "too many bodies");
   opt(o, "inputs", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
     for (size_t i = 0; i < items.size(); ++i) s.inputs.push_back(read_input(items[i], p + "/" + std::to_string(i), s.bodies));
@@ -709,7 +810,7 @@ Status error_status(std::string message) { return Status{StatusCode::invalid_arg
 
 }  // namespace
 
-Result<Scene> load_scene_text(std::string_view text, const std::string& name) {
+Result<Scene> load_scene_text(std::string_view text, const std::string& name, const SceneLimits& limits) {
   Result<Scene> out;
   JsonParse parsed = parse_json_tree(text);
   if (!parsed.ok()) {
@@ -717,7 +818,7 @@ Result<Scene> load_scene_text(std::string_view text, const std::string& name) {
     return out;
   }
   try {
-    out.value = read_scene(parsed.value);
+    out.value = read_scene(parsed.value, limits);
   } catch (const SceneError& e) {
     out.status = error_status(name + ": " + e.message);
     return out;
@@ -726,7 +827,7 @@ Result<Scene> load_scene_text(std::string_view text, const std::string& name) {
   return out;
 }
 
-Result<Scene> load_scene_file(const std::string& path) {
+Result<Scene> load_scene_file(const std::string& path, const SceneLimits& limits) {
   std::ifstream file(path, std::ios::binary);
   if (!file) {
     Result<Scene> out;
@@ -740,7 +841,7 @@ Result<Scene> load_scene_file(const std::string& path) {
     out.status = error_status(path + ": cannot read the file");
     return out;
   }
-  return load_scene_text(text.str(), path);
+  return load_scene_text(text.str(), path, limits);
 }
 
 Result<BuiltScene> build_world(const Scene& scene) {

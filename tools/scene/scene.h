@@ -68,11 +68,28 @@ struct Scene {
   std::vector<SceneInput> inputs;  ///< ascending tick; file order within a tick
 };
 
+/// Default cap on a scene's bodies (explicit plus generated): about 80 MB of
+/// loaded scene. Raise it with SceneLimits::max_bodies or `--max-bodies`.
+inline constexpr int64_t k_default_scene_max_bodies = 100000;
+/// Default cap on a scene's shapes (each body's shapes summed).
+inline constexpr int64_t k_default_scene_max_shapes = 400000;
+
+/// What a scene may ask for. Generators are counted from their parameters
+/// before anything is expanded, so a few bytes of JSON never allocate more
+/// than these limits allow. Values above the engine's k_max_bodies /
+/// k_max_shapes are lowered to them.
+struct SceneLimits {
+  int64_t max_bodies = k_default_scene_max_bodies;  ///< bodies in all, ≥ 0
+  int64_t max_shapes = k_default_scene_max_shapes;  ///< shapes in all (a chain: one per point), ≥ 0
+};
+
 /// Parses scene text; `name` (usually the file path) prefixes every error.
-Result<Scene> load_scene_text(std::string_view text, const std::string& name);
+/// A scene (or one generator) over `limits` is refused with the JSON pointer
+/// of the generator or array, the requested count and the limit.
+Result<Scene> load_scene_text(std::string_view text, const std::string& name, const SceneLimits& limits = {});
 /// Reads and parses a scene file (errors: unreadable file, then as
 /// load_scene_text).
-Result<Scene> load_scene_file(const std::string& path);
+Result<Scene> load_scene_file(const std::string& path, const SceneLimits& limits = {});
 
 /// A world built from a scene and its body handles (parallel to
 /// Scene::bodies).
