@@ -374,6 +374,7 @@ WorldCounters world_counters(WorldId id) {
   if (w == nullptr) return c;
   c.body_count = w->body_pool.alive_count;
   c.shape_count = w->shape_pool.alive_count;
+  c.joint_count = w->joint_pool.alive_count;
   c.solver_body_count = w->last_solver_body_count;
   c.step_count = w->step_count;
   c.arena_capacity = w->arena.capacity;
@@ -431,20 +432,26 @@ StepResult world_step(WorldId id, Q32 time_step) {
   // The stages, in order (world.h explains each).
   stage_update_contacts(world, context);
   stage_wake_touched(world, context);  // sleepers touched by awake bodies (island.cpp)
+  stage_wake_joined(world, context);   // sleepers joined to awake bodies (joint_solver.cpp)
   events_after_contacts(world);  // start transforms and hit candidates (events.cpp)
   stage_prepare_bodies(world, context);
   stage_prepare_contacts(world, context);
+  stage_prepare_joints(world, context);  // joint stages: nothing without joints (joint_solver.cpp)
   for (int32_t i = 0; i < n; ++i) {
     context->sub_step_index = i;
     stage_record_approach(world, context);
     stage_integrate_velocities(world, context);
+    stage_warm_start_joints(world, context);
     stage_warm_start(world, context);
+    stage_solve_joints(world, context);
     stage_solve(world, context);
     stage_integrate_positions(world, context);
+    stage_relax_joints(world, context);
     stage_relax(world, context);
   }
   stage_restitution(world, context);
   stage_store_impulses(world, context);
+  stage_store_joints(world, context);  // reactions, breaking, joint events
   stage_continuous(world, context);  // fast bodies stop at their time of impact (continuous.cpp)
   stage_finalize_bodies(world, context);
   stage_update_sleep(world, context);  // sleep timers and islands (island.cpp)
