@@ -552,6 +552,19 @@ Q32 joint_reaction_torque(JointId id) {
   return get_joint(id, Q32::zero(), [](const World&, const Joint& j) { return j.reaction_torque; });
 }
 
+Vec2 joint_world_anchor_a(JointId id) {
+  return get_joint(id, Vec2{}, [](const World& w, const Joint& j) {
+    if (j.type == JointType::mouse) return j.target;
+    return transform_point(w.body_sims[static_cast<size_t>(j.body_a)].transform, j.local_anchor_a);
+  });
+}
+
+Vec2 joint_world_anchor_b(JointId id) {
+  return get_joint(id, Vec2{}, [](const World& w, const Joint& j) {
+    return transform_point(w.body_sims[static_cast<size_t>(j.body_b)].transform, j.local_anchor_b);
+  });
+}
+
 Q32 joint_angle(JointId id) {
   return get_joint(id, Q32::zero(), [](const World& w, const Joint& j) {
     if (j.type == JointType::distance || j.type == JointType::mouse || j.type == JointType::motor) return Q32::zero();

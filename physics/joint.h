@@ -228,6 +228,11 @@ Vec2 joint_reaction_force(JointId joint);
 /// Torque applied to B during the last sub-step of the last step, N·m.
 Q32 joint_reaction_torque(JointId joint);
 
+/// World position of the joint's anchor on A (mouse joint: the target) and
+/// on B, m; zero for an invalid handle.
+Vec2 joint_world_anchor_a(JointId joint);
+Vec2 joint_world_anchor_b(JointId joint);
+
 /// Current joint angle (relative angle of B to A minus the reference angle,
 /// rad, in [−π, π]) for revolute, weld, prismatic and wheel joints; 0
 /// otherwise.
