@@ -63,7 +63,7 @@ TEST_CASE("scene joints: errors carry the JSON pointer", "[scene][joint]") {
     if (b.ok()) destroy_world(b.value.world);
     return b.status.message;
   };
-  CHECK(error(R"({"type": "hinge", "body_a": 0, "body_b": 1})").find("j.json: /joints/0/type: expected one of") == 0);
+  CHECK(error(R"({"type": "hinge", "body_a": 0, "body_b": 1})").find("j.json: /joints/0/type: unknown value \"hinge\"; expected one of") == 0);
   CHECK(error(R"({"type": "weld", "body_a": "nobody", "body_b": 1})") ==
         "j.json: /joints/0/body_a: no body is named \"nobody\"");
   CHECK(error(R"({"type": "weld", "body_a": 0, "body_b": 1, "stiffness": 3})").find("/joints/0/stiffness: unknown key") !=
