@@ -63,7 +63,7 @@ TEST_CASE("golden joint scenes: bridge and chain lose a joint and a plank's two 
 
 TEST_CASE("golden joint scenes: the shelf and lamp break, the hook comes and goes", "[golden][joint]") {
   const Counts n = watch("joints_ropes_breaking");
-  CHECK(n.max_joints == 8);
+  CHECK(n.max_joints == (tick_cap() > 900 ? 8 : 7));  // the hook is fired at tick 900
   if (tick_cap() >= 2601) {
     CHECK(n.broke == 2);
     CHECK(n.with_body == 5);  // three ropes and two springs go with the ceiling
