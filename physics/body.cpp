@@ -429,6 +429,7 @@ Status destroy_body(BodyId id) {
   if (!s.ok()) return s;
   // Whatever touched it (and its own island) wakes: its support is gone.
   wake_body_and_touching(w, i, true);
+  destroy_body_joints(w, i);  // its joints go with it, reported at the next step (joint.cpp)
   // Shapes go first, in ascending shape index.
   while (body_at(w, i).head_shape != k_null_index) remove_shape(w, body_at(w, i).head_shape);
   body_at(w, i) = Body{};

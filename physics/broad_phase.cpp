@@ -46,6 +46,7 @@ bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b)
   if (!ba.enabled || !bb.enabled) return false;
   if (ba.type != BodyType::dynamic_body && bb.type != BodyType::dynamic_body) return false;
   if (!filters_should_collide(a.filter, b.filter)) return false;
+  if (joint_blocks_collision(world, a.body_index, b.body_index)) return false;  // collide_connected (joint.h)
   const BroadPhase& bp = world.broad_phase;
   if (bp.custom_filter == nullptr) return true;
   const int32_t lower = shape_a < shape_b ? shape_a : shape_b;
@@ -70,6 +71,7 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
   } else if ((fa.category_bits & fb.mask_bits) == 0 || (fb.category_bits & fa.mask_bits) == 0) {
     return false;
   }
+  if (joint_blocks_collision(*world, fa.body, fb.body)) return false;  // collide_connected (joint.h)
   if (bp.custom_filter == nullptr) return true;
   return bp.custom_filter(make_shape_id(*world, lower), make_shape_id(*world, higher), bp.custom_context);
 }

@@ -205,6 +205,18 @@ void stage_update_sleep(World* world, StepContext* context) {
     if (ra < rb) parent[rb] = ra;
     if (rb < ra) parent[ra] = rb;
   }
+  // 2b. Joints between two simulated dynamic bodies, in joint index order.
+  for (int32_t ji = 0; ji < id_pool_capacity(world->joint_pool); ++ji) {
+    if (!id_pool_is_alive(world->joint_pool, ji)) continue;
+    const Joint& j = world->joints.joints[static_cast<size_t>(ji)];
+    if (!is_dynamic_simulated(world->bodies[static_cast<size_t>(j.body_a)]) ||
+        !is_dynamic_simulated(world->bodies[static_cast<size_t>(j.body_b)])) {
+      continue;
+    }
+    const int32_t ra = find_root(parent, j.body_a), rb = find_root(parent, j.body_b);
+    if (ra < rb) parent[rb] = ra;
+    if (rb < ra) parent[ra] = rb;
+  }
 
   // 3. An island may sleep when every body in it has been still long enough.
   for (int32_t b = 0; b < end; ++b) {

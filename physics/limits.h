@@ -40,6 +40,16 @@ inline constexpr Q32 k_min_shape_size = 0.005_q32;
 /// Largest shape extent from its body origin, m.
 inline constexpr Q32 k_max_shape_size = 10000_q32;
 
+/// Joints (joint.h): largest motor, break and mouse/motor-joint force, N,
+/// and torque, N·m; largest spring stiffness, Hz, and damping ratio; the
+/// range of distance-joint lengths and prismatic/wheel translations, m.
+inline constexpr Q32 k_max_joint_force = 100000000_q32;
+inline constexpr Q32 k_max_joint_torque = 100000000_q32;
+inline constexpr Q32 k_max_joint_hertz = 10000_q32;
+inline constexpr Q32 k_max_joint_damping_ratio = 10000_q32;
+inline constexpr Q32 k_min_joint_length = 0.005_q32;
+inline constexpr Q32 k_max_joint_length = 10000_q32;
+
 /// Checks lo ≤ value ≤ hi. On failure returns false and writes a message that
 /// names the quantity, the value and the range, e.g. "body 3 mass 0.0001 kg
 /// is outside [0.001, 100000] kg".

@@ -158,6 +158,7 @@ struct StepResult {
 struct WorldCounters {
   int32_t body_count = 0;           ///< live bodies
   int32_t shape_count = 0;          ///< live shapes
+  int32_t joint_count = 0;          ///< live joints
   int32_t solver_body_count = 0;    ///< bodies simulated in the last step
   uint64_t step_count = 0;          ///< accepted non-empty steps so far
   int64_t arena_capacity = 0;       ///< bytes of the per-step stack
@@ -563,4 +564,5 @@ Status shape_set_user_data(ShapeId shape, uint64_t user_data);
 
 // The event and query APIs live in their own headers, part of this one.
 #include "physics/events.h"
+#include "physics/joint.h"
 #include "physics/query.h"

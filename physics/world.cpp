@@ -382,6 +382,7 @@ WorldCounters world_counters(WorldId id) {
   if (w == nullptr) return c;
   c.body_count = w->body_pool.alive_count;
   c.shape_count = w->shape_pool.alive_count;
+  c.joint_count = w->joint_pool.alive_count;
   c.solver_body_count = w->last_solver_body_count;
   c.step_count = w->step_count;
   c.arena_capacity = w->arena.capacity;
@@ -471,11 +472,13 @@ StepResult world_step(WorldId id, Q32 time_step) {
   profile.broad_phase_ns = broad < profile.narrow_phase_ns ? broad : profile.narrow_phase_ns;
   profile.narrow_phase_ns -= profile.broad_phase_ns;
   stage_wake_touched(world, context);  // sleepers touched by awake bodies (island.cpp)
+  stage_wake_joined(world, context);   // sleepers joined to awake bodies (joint_solver.cpp)
   profile_lap(&profile.islands_ns, &mark);
   events_after_contacts(world);  // start transforms and hit candidates (events.cpp)
   profile_lap(&profile.events_ns, &mark);
   stage_prepare_bodies(world, context);
   stage_prepare_contacts(world, context);
+  stage_prepare_joints(world, context);  // joint stages: nothing without joints (joint_solver.cpp)
   profile_lap(&profile.prepare_ns, &mark);
   for (int32_t i = 0; i < n; ++i) {
     context->sub_step_index = i;
@@ -483,18 +486,22 @@ StepResult world_step(WorldId id, Q32 time_step) {
     profile_lap(&profile.restitution_ns, &mark);
     stage_integrate_velocities(world, context);
     profile_lap(&profile.integrate_velocities_ns, &mark);
+    stage_warm_start_joints(world, context);
     stage_warm_start(world, context);
     profile_lap(&profile.warm_start_ns, &mark);
+    stage_solve_joints(world, context);
     stage_solve(world, context);
     profile_lap(&profile.solve_ns, &mark);
     stage_integrate_positions(world, context);
     profile_lap(&profile.integrate_positions_ns, &mark);
+    stage_relax_joints(world, context);
     stage_relax(world, context);
     profile_lap(&profile.relax_ns, &mark);
   }
   stage_restitution(world, context);
   profile_lap(&profile.restitution_ns, &mark);
   stage_store_impulses(world, context);
+  stage_store_joints(world, context);  // reactions, breaking, joint events
   profile_lap(&profile.store_impulses_ns, &mark);
   stage_continuous(world, context);  // fast bodies stop at their time of impact (continuous.cpp)
   profile_lap(&profile.continuous_ns, &mark);

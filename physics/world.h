@@ -46,6 +46,7 @@
 #include "physics/defs.h"
 #include "physics/id_pool.h"
 #include "physics/island.h"
+#include "physics/joint.h"
 #include "physics/ids.h"
 #include "physics/shape.h"
 #include "physics/tandem.h"
@@ -107,6 +108,8 @@ struct World {
   std::vector<Contact> contacts;     ///< sorted by (shape_a, shape_b) (contact.h)
   std::vector<Contact> contact_scratch;  ///< the next list is built here, then swapped
   EventState events;                 ///< the last step's events and their buffers (events.h)
+  IdPool joint_pool;                 ///< joint slots (joint.h)
+  JointWorld joints;                 ///< joints, their collision filter and events (joint.h)
 
   Arena arena;                       ///< per-step scratch
   StepContext context;               ///< the current / last step

@@ -8,7 +8,10 @@ namespace tandem {
 
 namespace {
 
-bool uses_body(CommandType t) { return t != CommandType::set_gravity && t != CommandType::user_input && t != CommandType::create_body; }
+bool uses_body(CommandType t) {
+  return t != CommandType::set_gravity && t != CommandType::user_input && t != CommandType::create_body &&
+         !is_joint_command(t);
+}
 
 bool equal_shape_def(const ShapeDef& a, const ShapeDef& b) {
   return a.friction == b.friction && a.restitution == b.restitution && a.density == b.density &&
@@ -309,6 +312,12 @@ bool operator==(const Command& a, const Command& b) {
     case CommandType::set_enabled: return a.flag == b.flag;
     case CommandType::set_gravity: return a.vector == b.vector;
     case CommandType::user_input: return a.payload == b.payload;
+    case CommandType::create_joint:
+    case CommandType::destroy_joint:
+    case CommandType::set_joint_motor_speed:
+    case CommandType::set_joint_target:
+    case CommandType::set_joint_length:
+    case CommandType::set_joint_limits: return equal_joint_command(a, b);
   }
   return false;
 }
@@ -328,6 +337,12 @@ const char* command_type_name(CommandType type) {
     case CommandType::set_enabled: return "set_enabled";
     case CommandType::set_gravity: return "set_gravity";
     case CommandType::user_input: return "user_input";
+    case CommandType::create_joint: return "create_joint";
+    case CommandType::destroy_joint: return "destroy_joint";
+    case CommandType::set_joint_motor_speed: return "set_joint_motor_speed";
+    case CommandType::set_joint_target: return "set_joint_target";
+    case CommandType::set_joint_length: return "set_joint_length";
+    case CommandType::set_joint_limits: return "set_joint_limits";
   }
   return "unknown";
 }
@@ -344,6 +359,10 @@ std::string describe(const Command& command) {
     s += " (";
     s += std::to_string(command.shapes.size());
     s += command.shapes.size() == 1 ? " shape)" : " shapes)";
+  }
+  if (is_joint_command(command.type) && command.type != CommandType::create_joint) {
+    s += " joint {index " + std::to_string(command.joint.index) + ", generation " +
+         std::to_string(command.joint.generation) + "}";
   }
   if (command.type == CommandType::user_input) {
     s += " (";
@@ -469,6 +488,7 @@ Status apply_command(WorldId world, const Command& c, BodyId* out_created) {
   if (out_created != nullptr) *out_created = BodyId{};
   if (c.type == CommandType::create_body) return apply_create_body(world, c, out_created);
   if (c.type == CommandType::user_input) return Status{};
+  if (is_joint_command(c.type)) return prefixed(c, apply_joint_command(world, c));
   if (c.type == CommandType::set_gravity) return prefixed(c, world_set_gravity(world, c.vector));
   const BodyId body = body_id(world, c.body);
   if (c.body.generation == 0 || c.body.index == UINT32_MAX)
@@ -542,6 +562,12 @@ void encode_command(ByteWriter& w, const Command& c) {
       w.u32(static_cast<uint32_t>(c.payload.size()));
       w.bytes(c.payload.data(), c.payload.size());
       break;
+    case CommandType::create_joint:
+    case CommandType::destroy_joint:
+    case CommandType::set_joint_motor_speed:
+    case CommandType::set_joint_target:
+    case CommandType::set_joint_length:
+    case CommandType::set_joint_limits: encode_joint_command(w, c); break;
   }
 }
 
@@ -550,8 +576,9 @@ bool decode_command(ByteReader& r, Command* out) {
   const size_t at = r.offset();
   const uint8_t type = r.u8("command type");
   if (!r.ok()) return false;
-  if (type < 1 || type > static_cast<uint8_t>(CommandType::user_input)) {
-    r.fail_at(at, "expected " + r.describe_what("command type") + " 1..13, got " + std::to_string(type));
+  if (type < 1 || type > k_last_command_type) {
+    r.fail_at(at, "expected " + r.describe_what("command type") + " 1.." + std::to_string(k_last_command_type) +
+                      ", got " + std::to_string(type));
     return false;
   }
   out->type = static_cast<CommandType>(type);
@@ -610,6 +637,14 @@ bool decode_command(ByteReader& r, Command* out) {
       out->payload.assign(bytes.begin(), bytes.end());
       break;
     }
+    case CommandType::create_joint:
+    case CommandType::destroy_joint:
+    case CommandType::set_joint_motor_speed:
+    case CommandType::set_joint_target:
+    case CommandType::set_joint_length:
+    case CommandType::set_joint_limits:
+      if (!decode_joint_command(r, out)) return false;
+      break;
   }
   return r.ok();
 }

@@ -25,7 +25,7 @@
 // so a replay that re-applies the same failing command stays in step).
 //
 // ENCODING (little-endian, replay/bytes.h). One command:
-//   u8  type (CommandType, 1…13)
+//   u8  type (CommandType, 1…19)
 //   then by type:
 //   create_body:        BodyDef, u32 shape count (≤ k_max_command_shapes), each ShapeSpec
 //   destroy_body:       BodyRef
@@ -40,6 +40,20 @@
 //   set_awake, set_enabled: BodyRef, u8 flag
 //   set_gravity:        vec2 vector (m/s²)
 //   user_input:         u32 byte count (≤ k_max_user_payload_bytes), bytes
+//   create_joint:       JointSpec = u8 type (JointType 0…6), BodyRef a, BodyRef b,
+//                       vec2 anchor a, vec2 anchor b, u8 collide_connected,
+//                       q32 break_force, q32 break_torque, u64 user_data,
+//                       vec2 axis, q32 reference_angle, u8 enable_spring,
+//                       u8 enable_limit, u8 enable_motor, q32 hertz,
+//                       q32 damping_ratio, q32 angular_hertz,
+//                       q32 angular_damping_ratio, q32 length, q32 lower,
+//                       q32 upper, q32 motor_speed, q32 motor_force,
+//                       vec2 target, q32 angular_offset, q32 max_force,
+//                       q32 max_torque, q32 correction_factor
+//   destroy_joint:      JointRef (u32 index, u32 generation)
+//   set_joint_motor_speed, set_joint_length: JointRef, q32
+//   set_joint_target:   JointRef, vec2
+//   set_joint_limits:   JointRef, q32 lower, q32 upper
 // BodyRef = u32 index, u32 generation. vec2 = q32 x, q32 y; q32 = i64 raw;
 // rot = q32 c, q32 s.
 // BodyDef = u8 type (0…2), vec2 position, rot rotation, vec2 linear_velocity,
@@ -87,7 +101,17 @@ enum class CommandType : uint8_t {
   set_enabled = 11,
   set_gravity = 12,
   user_input = 13,
+  // Joints (replay/joint_commands.cpp).
+  create_joint = 14,
+  destroy_joint = 15,
+  set_joint_motor_speed = 16,
+  set_joint_target = 17,
+  set_joint_length = 18,
+  set_joint_limits = 19,
 };
+
+/// The last command type (decoders accept 1…k_last_command_type).
+inline constexpr uint8_t k_last_command_type = 19;
 
 /// Most shapes in one create_body command.
 inline constexpr uint32_t k_max_command_shapes = 1u << 16;
@@ -108,6 +132,44 @@ struct BodyRef {
 constexpr BodyRef body_ref(BodyId id) { return BodyRef{id.index1 - 1, id.generation}; }
 /// The handle of a ref in `world`.
 constexpr BodyId body_id(WorldId world, BodyRef ref) { return BodyId{ref.index + 1, ref.generation, world}; }
+
+/// A joint named by its pool index and generation (JointId without the world).
+struct JointRef {
+  uint32_t index = 0;       ///< joint index (JointId::index1 − 1)
+  uint32_t generation = 0;  ///< slot generation, ≥ 1 for a live joint
+  friend constexpr bool operator==(JointRef, JointRef) = default;
+};
+
+/// The JointRef of a joint handle.
+constexpr JointRef joint_ref(JointId id) { return JointRef{id.index1 - 1, id.generation}; }
+/// The handle of a ref in `world`.
+constexpr JointId joint_id(WorldId world, JointRef ref) { return JointId{ref.index + 1, ref.generation, world}; }
+
+/// A joint of any kind for a create_joint command: the kind, its two bodies
+/// and every setting a joint definition can carry (the kind's create
+/// function reads the fields its definition has; see joint.h for units and
+/// ranges: `lower`/`upper` are the angle, translation or min/max length
+/// limits, `motor_force` the max motor force or torque, `target` the mouse
+/// target or the motor joint's linear offset, `hertz`/`damping_ratio` the
+/// spring or weld linear stiffness).
+struct JointSpec {
+  JointType type = JointType::revolute;
+  BodyRef body_a, body_b;
+  Vec2 local_anchor_a, local_anchor_b;
+  bool collide_connected = false;
+  Q32 break_force, break_torque;
+  uint64_t user_data = 0;
+  Vec2 local_axis{Q32::one(), Q32::zero()};
+  Q32 reference_angle;
+  bool enable_spring = false, enable_limit = false, enable_motor = false;
+  Q32 hertz, damping_ratio, angular_hertz, angular_damping_ratio;
+  Q32 length = Q32::one();
+  Q32 lower, upper;
+  Q32 motor_speed, motor_force;
+  Vec2 target;
+  Q32 angular_offset, max_force, max_torque, correction_factor;
+  friend bool operator==(const JointSpec&, const JointSpec&) = default;
+};
 
 /// The geometry kinds a create_body command can attach.
 enum class ShapeKind : uint8_t { circle = 0, capsule = 1, segment = 2, polygon = 3, chain = 4 };
@@ -139,6 +201,9 @@ struct Command {
   Rot rotation;   ///< set_transform
   bool flag = true;  ///< wake (forces, impulses), awake (set_awake), enabled (set_enabled)
   std::vector<uint8_t> payload;  ///< user_input: bytes defined by the game
+  JointRef joint;     ///< joint commands but create_joint
+  JointSpec joint_spec;  ///< create_joint
+  Q32 scalar2;        ///< set_joint_limits: upper (scalar is lower)
 };
 
 /// Field-by-field equality (only the fields the type uses).
@@ -180,6 +245,33 @@ Command make_set_enabled(BodyRef body, bool enabled);
 Command make_set_gravity(Vec2 gravity);
 /// An opaque user input payload.
 Command make_user_input(std::vector<uint8_t> payload);
+/// Creates a joint (JointSpec).
+Command make_create_joint(const JointSpec& spec);
+/// Destroys a joint.
+Command make_destroy_joint(JointRef joint);
+/// joint_set_motor_speed (rad/s or m/s).
+Command make_set_joint_motor_speed(JointRef joint, Q32 speed);
+/// joint_set_target (mouse joint, m).
+Command make_set_joint_target(JointRef joint, Vec2 target);
+/// joint_set_length (distance joint rest length, m).
+Command make_set_joint_length(JointRef joint, Q32 length);
+/// joint_set_limits (rad or m; a rope's min and max length).
+Command make_set_joint_limits(JointRef joint, Q32 lower, Q32 upper);
+
+// Joint commands, shared with commands.cpp (joint_commands.cpp).
+/// Applies a joint command (types create_joint…set_joint_limits).
+Status apply_joint_command(WorldId world, const Command& command);
+/// Encodes the fields of a joint command after its type byte.
+void encode_joint_command(ByteWriter& writer, const Command& command);
+/// Decodes the fields of a joint command after its type byte.
+bool decode_joint_command(ByteReader& reader, Command* out_command);
+/// Equality of the fields a joint command uses.
+bool equal_joint_command(const Command& a, const Command& b);
+/// True for the joint command types.
+constexpr bool is_joint_command(CommandType t) {
+  return static_cast<uint8_t>(t) >= static_cast<uint8_t>(CommandType::create_joint) &&
+         static_cast<uint8_t>(t) <= k_last_command_type;
+}
 
 // --- applying -----------------------------------------------------------------
 /// Applies an engine command to `world` through the public API (tandem.h).

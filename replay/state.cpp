@@ -47,16 +47,19 @@ constexpr uint32_t k_state_kind_full = 0;
 /// world. It is a World (never registered, never stepped) so the physics
 /// functions that derive cached values (shape bounds, body mass, extents) can
 /// run on the image itself for the consistency checks; restore then swaps its
-/// vectors into the target world.
+/// vectors into the target world. Joints are World::joints/joint_pool (empty
+/// for a version-1 image).
 struct WorldImage : World {
   // Reader only: byte offset of each record, for messages.
   std::vector<size_t> body_offsets;   // by body index
   std::vector<size_t> shape_offsets;  // by shape index
   std::vector<size_t> contact_offsets;
+  std::vector<size_t> joint_offsets;  // by joint index
 };
 
 std::vector<PairRecord>& touching_of(World& w) { return w.events.touching; }
 std::vector<PairRecord>& sensors_of(World& w) { return w.events.sensor_overlaps; }
+std::vector<Joint>& joints_of(World& w) { return w.joints.joints; }
 
 /// The smallest encoded contact record (no points), for read_count.
 size_t min_contact_record_bytes();
@@ -354,6 +357,49 @@ void visit_contact(V& v, Contact& c) {
   }
 }
 
+/// A joint record (version 2): settings, accumulated impulses and the last
+/// reaction; the per-step scratch is not state.
+template <typename V>
+void visit_joint(V& v, Joint& j) {
+  v.enum8("type", j.type, static_cast<int32_t>(JointType::motor));
+  v.i32("body_a", j.body_a);
+  v.i32("body_b", j.body_b);
+  v.vec2("local_anchor_a.x", "local_anchor_a.y", j.local_anchor_a);
+  v.vec2("local_anchor_b.x", "local_anchor_b.y", j.local_anchor_b);
+  v.vec2("local_axis_a.x", "local_axis_a.y", j.local_axis_a);
+  v.q32("reference_angle", j.reference_angle);
+  v.boolean("collide_connected", j.collide_connected);
+  v.boolean("enable_spring", j.enable_spring);
+  v.boolean("enable_limit", j.enable_limit);
+  v.boolean("enable_motor", j.enable_motor);
+  v.q32("break_force", j.break_force);
+  v.q32("break_torque", j.break_torque);
+  v.u64("user_data", j.user_data);
+  v.q32("hertz", j.hertz);
+  v.q32("damping_ratio", j.damping_ratio);
+  v.q32("angular_hertz", j.angular_hertz);
+  v.q32("angular_damping_ratio", j.angular_damping_ratio);
+  v.q32("length", j.length);
+  v.q32("lower", j.lower);
+  v.q32("upper", j.upper);
+  v.q32("motor_speed", j.motor_speed);
+  v.q32("max_motor_force", j.max_motor_force);
+  v.vec2("target.x", "target.y", j.target);
+  v.q32("angular_offset", j.angular_offset);
+  v.q32("max_force", j.max_force);
+  v.q32("max_torque", j.max_torque);
+  v.q32("correction_factor", j.correction_factor);
+  v.vec2("linear_impulse.x", "linear_impulse.y", j.linear_impulse);
+  v.q32("angular_impulse", j.angular_impulse);
+  v.q32("axial_impulse", j.axial_impulse);
+  v.q32("spring_impulse", j.spring_impulse);
+  v.q32("motor_impulse", j.motor_impulse);
+  v.q32("lower_impulse", j.lower_impulse);
+  v.q32("upper_impulse", j.upper_impulse);
+  v.vec2("reaction_force.x", "reaction_force.y", j.reaction_force);
+  v.q32("reaction_torque", j.reaction_torque);
+}
+
 template <typename V>
 void visit_pair(V& v, PairRecord& p) {
   v.i32("shape_a", p.shape_a);
@@ -426,9 +472,10 @@ void visit_pairs(V& v, std::vector<PairRecord>& pairs, const char* kind, ByteRea
 }
 
 /// The whole state after the header. `W` is World or WorldImage; `reader` is
-/// non-null only for the ReadVisitor.
+/// non-null only for the ReadVisitor. with_joints: the version-2 joint
+/// sections follow the version-1 ones.
 template <typename V, typename W>
-void visit_world(V& v, W& w, ByteReader* reader) {
+void visit_world(V& v, W& w, ByteReader* reader, bool with_joints) {
   v.tag("WRLD");
   v.record("world", 0);
   visit_world_def(v, w.def);
@@ -499,7 +546,30 @@ void visit_world(V& v, W& w, ByteReader* reader) {
   if (!v.ok()) return;
   v.tag("SENS");
   visit_pairs(v, sensors_of(w), "sensor_overlap", reader);
+  if (!with_joints || !v.ok()) return;
+
+  v.tag("JPOL");
+  visit_pool(v, w.joint_pool, "joint_slot", k_max_bodies, reader);
+  if (!v.ok()) return;
+  const size_t joint_capacity = w.joint_pool.generations.size();
+  std::vector<Joint>& joints = joints_of(w);
+  if constexpr (V::k_reading) {
+    joints.assign(joint_capacity, Joint{});
+    w.joint_offsets.assign(joint_capacity, 0);
+  }
+  v.tag("JOIN");
+  for (size_t i = 0; i < joint_capacity; ++i) {
+    if (w.joint_pool.alive[i] == 0) continue;
+    v.record("joint", static_cast<int64_t>(i), -1, w.joint_pool.generations[i]);
+    if constexpr (V::k_reading) w.joint_offsets[i] = reader->offset();
+    visit_joint(v, joints[i]);
+    if (!v.ok()) return;
+  }
 }
+
+/// Worlds that never had a joint are written as version 1 (the format before
+/// joints, byte for byte); others as version 2 with the joint sections.
+bool writes_joints(const World& w) { return !w.joint_pool.generations.empty(); }
 
 // ---------------------------------------------------------------------------
 // Sizes
@@ -522,6 +592,7 @@ struct RecordSizes {
   size_t polygon_vertex = 32; // vertex + normal
   size_t contact = 0;         // with no points
   size_t contact_point = 0;
+  size_t joint = 0;
 };
 
 const RecordSizes& record_sizes() {
@@ -559,6 +630,10 @@ const RecordSizes& record_sizes() {
                         visit_contact(v, c);
                       }) -
                       s.contact;
+    s.joint = measure([](WriteVisitor& v) {
+      Joint j{};
+      visit_joint(v, j);
+    });
     return s;
   }();
   return sizes;
@@ -590,12 +665,16 @@ size_t encoded_size(const World& w) {
   }
   n += 4 + 4 + w.events.touching.size() * k_pair_bytes;
   n += 4 + 4 + w.events.sensor_overlaps.size() * k_pair_bytes;
+  if (writes_joints(w)) {
+    n += 4 + 4 + w.joint_pool.generations.size() * k_slot_bytes;
+    n += 4 + static_cast<size_t>(w.joint_pool.alive_count) * rs.joint;
+  }
   return n;
 }
 
-void write_header(ByteWriter* out) {
+void write_header(ByteWriter* out, bool with_joints) {
   out->bytes(k_state_magic, 4);
-  out->u32(k_state_format_version);
+  out->u32(with_joints ? k_state_format_version_joints : k_state_format_version);
   out->u32(k_state_kind_full);
 }
 
@@ -603,9 +682,10 @@ void write_header(ByteWriter* out) {
 /// past the capacity was written).
 size_t encode_into(World* w, uint8_t* buffer, size_t capacity) {
   ByteWriter out(buffer, capacity);
-  write_header(&out);
+  const bool with_joints = writes_joints(*w);
+  write_header(&out, with_joints);
   WriteVisitor v{&out};
-  visit_world(v, *w, nullptr);
+  visit_world(v, *w, nullptr, with_joints);
   return out.size();
 }
 
@@ -1133,9 +1213,9 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   }
   const uint32_t version = r.u32("format version");
   if (!r.ok()) return bad(r.error());
-  if (version != k_state_format_version) {
-    return bad("offset 4: expected format version " + std::to_string(k_state_format_version) + ", got " +
-               std::to_string(version));
+  if (version != k_state_format_version && version != k_state_format_version_joints) {
+    return bad("offset 4: expected format version " + std::to_string(k_state_format_version) + " or " +
+               std::to_string(k_state_format_version_joints) + ", got " + std::to_string(version));
   }
   if (out_version != nullptr) *out_version = version;
   const uint32_t kind = r.u32("image kind");
@@ -1145,7 +1225,13 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   }
 
   ReadVisitor v{&r};
-  visit_world(v, *img, &r);
+  const bool with_joints = version == k_state_format_version_joints;
+  if (!with_joints) {
+    img->joint_pool = IdPool{};
+    img->joints.joints.clear();
+    img->joint_offsets.clear();
+  }
+  visit_world(v, *img, &r, with_joints);
   if (!r.ok()) return bad(r.error());
   if (!r.at_end()) {
     return bad("offset " + std::to_string(r.offset()) + ": expected the end of the image, " +
@@ -1255,6 +1341,17 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   if (!s.ok()) return s;
   s = check_pairs(img->events.sensor_overlaps, "sensor overlap");
   if (!s.ok()) return s;
+  for (size_t i = 0; i < img->joints.joints.size(); ++i) {
+    if (img->joint_pool.alive[i] == 0) continue;
+    const Joint& j = img->joints.joints[i];
+    const auto live = [&](int32_t b) {
+      return b >= 0 && b < body_cap && img->body_pool.alive[static_cast<size_t>(b)] != 0;
+    };
+    if (!live(j.body_a) || !live(j.body_b) || j.body_a == j.body_b) {
+      return at(img->joint_offsets[i], "joint " + std::to_string(i) + " joins bodies (" + std::to_string(j.body_a) +
+                                           ", " + std::to_string(j.body_b) + "), which are not two live bodies");
+    }
+  }
   return validate_image_values(img, function);
 }
 
@@ -1275,6 +1372,11 @@ void commit_image(World* w, WorldImage& img) {
   std::swap(w->shape_geometries, img.shape_geometries);
   std::swap(w->contacts, img.contacts);
   w->contact_scratch.clear();
+  std::swap(w->joint_pool, img.joint_pool);
+  std::swap(w->joints.joints, img.joints.joints);
+  w->joints.events.clear();
+  w->joints.pending.clear();
+  rebuild_joint_filter(w);
   EventState& e = w->events;
   std::swap(e.touching, img.events.touching);
   std::swap(e.sensor_overlaps, img.events.sensor_overlaps);
@@ -1435,7 +1537,7 @@ Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out) {
   out->version = version;
   out->records.clear();
   DescribeVisitor v{out};
-  visit_world(v, img, nullptr);
+  visit_world(v, img, nullptr, version == k_state_format_version_joints);
   return s;
 }
 
@@ -1648,12 +1750,12 @@ std::string StateDifference::describe() const {
 namespace {
 /// The position of a record kind's section in canonical order.
 int32_t kind_rank(const std::string& kind) {
-  static const char* const kinds[] = {"world", "body_slot", "body", "shape_slot", "shape",
-                                      "contact", "touching", "sensor_overlap"};
-  for (int32_t i = 0; i < 8; ++i) {
+  static const char* const kinds[] = {"world",   "body_slot", "body",           "shape_slot", "shape",
+                                      "contact", "touching",  "sensor_overlap", "joint_slot", "joint"};
+  for (int32_t i = 0; i < 10; ++i) {
     if (kind == kinds[i]) return i;
   }
-  return 8;
+  return 10;
 }
 }  // namespace
 

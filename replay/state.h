@@ -22,6 +22,10 @@
 //             points with feature ids) and the points' warm-start impulses
 //   pairs     the touching pairs and sensor overlaps of the last step (they
 //             decide the next step's begin/end events)
+//   joints    (version 2 only, see k_state_format_version_joints) joint pool
+//             slots, then per live joint its settings, warm-start impulses
+//             and last reaction. Joint events waiting for the next step
+//             (destroyed with a body) are not state: a restore clears them
 // NOT encoded: scratch (arena, step context, contact scratch, the last step's
 // event lists — empty after a restore until the next step), dead slots' stale
 // records (reset to defaults on restore, as destroy does), polygon entries
@@ -86,8 +90,14 @@
 
 namespace tandem {
 
-/// The version written into and required from every state image.
+/// The version of images of worlds that never had a joint (the format before
+/// joints, byte for byte, so their hashes did not change).
 inline constexpr uint32_t k_state_format_version = 1;
+/// The version of images of worlds with joint slots: version 1 followed by
+/// the joint sections "JPOL" (joint pool) and "JOIN" (per live joint,
+/// ascending index: kind, bodies, anchors, axis, settings, accumulated
+/// impulses, last reaction). Both versions are read.
+inline constexpr uint32_t k_state_format_version_joints = 2;
 
 /// The 4 magic bytes at the start of every state image.
 inline constexpr uint8_t k_state_magic[4] = {'T', 'N', 'D', 'S'};
@@ -179,7 +189,7 @@ struct DecodedField {
 /// One record of a decoded state, in canonical order.
 struct DecodedRecord {
   std::string kind;        ///< "header", "world", "body_slot", "body", "shape_slot", "shape",
-                           ///< "contact", "touching", "sensor_overlap"
+                           ///< "contact", "touching", "sensor_overlap", "joint_slot", "joint"
   int64_t index = 0;       ///< slot / body / shape index; contacts and pairs: lower shape index
   int64_t index2 = -1;     ///< contacts and pairs: the higher shape index; −1 otherwise
   uint32_t generation = 0; ///< bodies and shapes: the slot's generation; 0 otherwise

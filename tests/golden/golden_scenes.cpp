@@ -16,7 +16,9 @@
 // commit (docs/determinism.md).
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <random>
+#include <vector>
 
 #include "golden_support.h"
 
@@ -508,6 +510,15 @@ constexpr Scene k_scenes[] = {
 
 }  // namespace
 
-std::span<const Scene> scenes() { return k_scenes; }
+extern const Scene k_joint_scenes[4];  // golden_joint_scenes.cpp
+
+std::span<const Scene> scenes() {
+  static const std::vector<Scene> all = [] {
+    std::vector<Scene> v(std::begin(k_scenes), std::end(k_scenes));
+    v.insert(v.end(), std::begin(k_joint_scenes), std::end(k_joint_scenes));
+    return v;
+  }();
+  return all;
+}
 
 }  // namespace tandem::golden

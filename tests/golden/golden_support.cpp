@@ -86,6 +86,7 @@ void rebind(SceneContext& ctx, WorldId w) {
   ctx.world = w;
   for (BodyId& b : ctx.bodies) b.world = w;
   for (ShapeId& s : ctx.shapes) s.world = w;
+  for (JointId& j : ctx.joints) j.world = w;
 }
 
 std::string hex(uint64_t v) {

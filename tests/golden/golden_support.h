@@ -53,6 +53,7 @@ struct SceneContext {
   WorldId world;
   std::vector<BodyId> bodies;   ///< named by the scene (index = the scene's own numbering)
   std::vector<ShapeId> shapes;  ///< likewise
+  std::vector<JointId> joints;  ///< likewise (golden_joint_scenes.cpp)
   int64_t counter = 0;          ///< any scene state (spawn count, ...)
   std::string error;            ///< the first failed call, "" when none
 

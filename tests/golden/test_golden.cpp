@@ -124,7 +124,9 @@ TEST_CASE("golden: every scene has a golden test case and a file", "[golden]") {
   // Keep the list below (one GOLDEN_SCENE line per scene) in step with scenes().
   const std::set<std::string> listed = {"circles",   "capsules", "pyramid",   "segments",       "chains",
                                         "friction_restitution", "sleep_wake", "filtering", "sensors",
-                                        "create_destroy", "scripted", "kinematic", "random_mix"};
+                                        "create_destroy", "scripted", "kinematic", "random_mix",
+                                        "joints_bridge_chain", "joints_machines", "joints_ropes_breaking",
+                                        "joints_ragdolls"};
   std::set<std::string> defined;
   for (const Scene& s : scenes()) defined.insert(s.name);
   CHECK(listed == defined);
@@ -175,6 +177,10 @@ GOLDEN_SCENE("create_destroy")
 GOLDEN_SCENE("scripted")
 GOLDEN_SCENE("kinematic")
 GOLDEN_SCENE("random_mix")
+GOLDEN_SCENE("joints_bridge_chain")
+GOLDEN_SCENE("joints_machines")
+GOLDEN_SCENE("joints_ropes_breaking")
+GOLDEN_SCENE("joints_ragdolls")
 
 // --- the scenes do what they claim (so a golden chain is never vacuous) -------
 

@@ -45,6 +45,13 @@ tandem_replay_cli_test(record-no-out 2 "record|scenes/stack.json" ERR "--out is 
 tandem_replay_cli_test(record-unwritable 2 "record|scenes/stack.json|-o|/nonexistent-dir/x.tnr"
   ERR "/nonexistent-dir/x.tnr: cannot create")
 
+# A scene with joints: recorded (create_joint commands after the bodies, keyframes in state format 2)
+# and replayed to the bit of `tandem run`.
+tandem_replay_cli_test(record-bridge 0 "record|scenes/bridge.json|-o|${out}/bridge.tnr|--ticks|60|--keyframe-every|20|--quiet"
+  OUT "^final tick 60  hash 0x[0-9a-f]+\n$" SETUP replay_bridge)
+tandem_replay_cli_test(replay-bridge-matches-run 0 "replay|${out}/bridge.tnr|--quiet"
+  OUT "^final tick 60  hash 0x[0-9a-f]+\n$" SAME "run|scenes/bridge.json|--ticks|60|--quiet" REQUIRES replay_bridge)
+
 # The replay reproduces `tandem run` of the same scene, to the bit.
 tandem_replay_cli_test(replay-stack-matches-run 0 "replay|${out}/stack.tnr|--quiet"
   OUT "^final tick 60  hash 0x[0-9a-f]+\n$" SAME "run|scenes/stack.json|--ticks|60|--quiet" REQUIRES replay_stack)

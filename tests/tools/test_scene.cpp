@@ -97,7 +97,7 @@ TEST_CASE("scene errors name the file, the JSON path and what was expected") {
              Catch::Contains("/bodies/0/position/0: expected a number within"));
   CHECK_THAT(load_error(R"({"bodies": [{"type": "dynamik"}]})"),
              Catch::Contains("/bodies/0/type: unknown value \"dynamik\" (did you mean \"dynamic\"?)"));
-  CHECK_THAT(load_error(R"({"joints": [{"type": "revolute"}]})"), Catch::Contains("/joints: joints are not supported yet"));
+  CHECK_THAT(load_error(R"({"joints": [{"type": "revolute"}]})"), Catch::Contains("/joints/0: missing key \"body_a\""));
   CHECK_THAT(load_error(R"({"bodies": [{"shapes": [{"type": "circle"}]}]})"),
              Catch::Contains("/bodies/0/shapes/0: missing key \"radius\""));
   CHECK_THAT(load_error(R"({"bodies": [{"shapes": [{"type": "polygon", "points": [[0,0],[1,0],[2,0]]}]}]})"),

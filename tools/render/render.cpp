@@ -162,6 +162,34 @@ void draw_world(cairo_t* cr, WorldId world, const View& view, const RenderOption
       }
     }
   }
+  if (o.joints) {
+    const int32_t joint_count = world_joints(world, nullptr, 0);
+    std::vector<JointId> joints(static_cast<size_t>(joint_count));
+    world_joints(world, joints.data(), joint_count);
+    for (const JointId j : joints) {
+      const JointType type = joint_type(j);
+      const Vec2 a = joint_world_anchor_a(j), b = joint_world_anchor_b(j);
+      const Vec2 oa = body_position(joint_body_a(j)), ob = body_position(joint_body_b(j));
+      static const Color k_joint_colors[] = {{0.1, 0.5, 0.1}, {0.1, 0.6, 0.7}, {0.4, 0.4, 0.4}, {0.6, 0.2, 0.6},
+                                             {0.8, 0.1, 0.1}, {0.2, 0.3, 0.8}, {0.7, 0.5, 0.1}};
+      const Color c = k_joint_colors[static_cast<size_t>(type)];
+      cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.9);
+      cairo_set_line_width(cr, 1.5);
+      if (type != JointType::mouse && type != JointType::distance) {
+        cairo_move_to(cr, m.x(d(oa.x)), m.y(d(oa.y)));
+        cairo_line_to(cr, m.x(d(a.x)), m.y(d(a.y)));
+      } else {
+        cairo_move_to(cr, m.x(d(a.x)), m.y(d(a.y)));
+      }
+      cairo_line_to(cr, m.x(d(b.x)), m.y(d(b.y)));
+      if (type != JointType::distance) cairo_line_to(cr, m.x(d(ob.x)), m.y(d(ob.y)));
+      cairo_stroke(cr);
+      for (const Vec2 p : {a, b}) {
+        cairo_arc(cr, m.x(d(p.x)), m.y(d(p.y)), 2.5, 0, 2 * M_PI);
+        cairo_fill(cr);
+      }
+    }
+  }
   if (o.contacts) {
     if (const World* wr = find_world(world)) {
       const double normal_px = 12.0;

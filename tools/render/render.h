@@ -4,7 +4,9 @@
 // What is drawn: every shape of every live body, filled and outlined by body
 // type (static green-grey, kinematic blue, dynamic orange; sleeping bodies
 // grey, disabled ones hollow; sensors dashed outlines), a radius line on
-// circles so rotation shows, and optionally each shape's AABB and each
+// circles so rotation shows, joints (origin–anchor–anchor–origin lines,
+// coloured by kind; a mouse joint from its target), and optionally each
+// shape's AABB and each
 // contact's points and normal. The contact data is read from the world's
 // contact list (physics/world.h) read-only — the renderer never changes the
 // world.
@@ -31,6 +33,7 @@ struct RenderOptions {
   int height = 600;       ///< pixels
   bool aabbs = false;     ///< draw each shape's world AABB
   bool contacts = false;  ///< draw contact points and normals
+  bool joints = true;     ///< draw joints: body origin → anchor A → anchor B → body origin (joint.h)
   std::string caption;    ///< text in the top-left corner (e.g. "tick 120")
 };
 

@@ -54,12 +54,19 @@ const std::vector<std::string> k_input_common_keys = {"tick", "type", "body", "c
 const std::vector<std::string> k_input_value_keys = {"force",    "impulse", "point",    "torque",  "velocity",
                                                      "position", "angle",   "awake",    "enabled", "gravity",
                                                      "wake"};
+const std::vector<std::string> k_joint_keys = {
+    "type",          "body_a",         "body_b",   "anchor",        "anchor_a",      "anchor_b",
+    "collide_connected", "break_force", "break_torque", "user_data", "axis",          "reference_angle",
+    "limit",         "motor_speed",    "max_motor_force", "hertz",  "damping_ratio", "angular_hertz",
+    "angular_damping_ratio", "length", "target",   "max_force",     "max_torque",    "correction_factor",
+    "linear_offset", "angular_offset", "comment"};
 const std::vector<std::string> k_names = {
     // enum values
     "static", "kinematic", "dynamic", "circle", "capsule", "box", "polygon", "segment", "chain",
     "grid", "pyramid", "random", "naive", "sweep_and_prune", "tree",
     "apply_force", "apply_linear_impulse", "apply_torque", "apply_angular_impulse", "set_linear_velocity",
-    "set_angular_velocity", "set_transform", "set_awake", "set_enabled", "set_gravity", "destroy_body"};
+    "set_angular_velocity", "set_transform", "set_awake", "set_enabled", "set_gravity", "destroy_body",
+    "revolute", "distance", "rope", "weld", "prismatic", "mouse", "wheel", "motor"};
 
 struct SceneError {
   std::string message;
@@ -696,6 +703,101 @@ int32_t resolve_body(const JsonValue& v, const std::string& path, const std::vec
   return static_cast<int32_t>(read_int(v, path, 0, static_cast<int64_t>(bodies.size()) - 1));
 }
 
+/// A joint: bodies by name or index; anchors as world points at the bodies'
+/// initial poses (turned into body-frame anchors here).
+SceneJoint read_joint(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies) {
+  Obj o(v, path, {&k_joint_keys});
+  static const std::vector<std::string> types = {"revolute", "distance", "rope", "weld",
+                                                 "prismatic", "mouse",    "wheel", "motor"};
+  const std::string type = read_enum(o.need("type"), o.at("type"), types);
+  SceneJoint j;
+  j.path = path;
+  j.body_a = resolve_body(o.need("body_a"), o.at("body_a"), bodies);
+  j.body_b = resolve_body(o.need("body_b"), o.at("body_b"), bodies);
+  JointSpec& s = j.spec;
+  const auto q = [&](const char* key, Q32 fallback) {
+    const JsonValue* x = o.find(key);
+    return x != nullptr ? read_q32(*x, o.at(key)) : fallback;
+  };
+  const auto vec = [&](const char* key, Vec2 fallback) {
+    const JsonValue* x = o.find(key);
+    return x != nullptr ? read_vec2(*x, o.at(key)) : fallback;
+  };
+  const auto local = [&](int32_t body, Vec2 world_point) {
+    const BodyDef& d = bodies[static_cast<size_t>(body)].def;
+    return inv_transform_point(Transform{d.position, d.rotation}, world_point);
+  };
+  const Vec2 pa = bodies[static_cast<size_t>(j.body_a)].def.position;
+  const Vec2 pb = bodies[static_cast<size_t>(j.body_b)].def.position;
+  const Vec2 anchor = vec("anchor", pb);
+  s.local_anchor_a = local(j.body_a, vec("anchor_a", anchor));
+  s.local_anchor_b = local(j.body_b, vec("anchor_b", anchor));
+  opt(o, "collide_connected", [&](const JsonValue& x, const std::string& p) { s.collide_connected = read_bool(x, p); });
+  s.break_force = q("break_force", Q32{});
+  s.break_torque = q("break_torque", Q32{});
+  opt(o, "user_data", [&](const JsonValue& x, const std::string& p) { s.user_data = read_u64(x, p); });
+  s.reference_angle = q("reference_angle", Q32{});
+  opt(o, "limit", [&](const JsonValue& x, const std::string& p) {
+    const Vec2 l = read_vec2(x, p);
+    s.enable_limit = true;
+    s.lower = l.x;
+    s.upper = l.y;
+  });
+  if (o.find("motor_speed") || o.find("max_motor_force")) s.enable_motor = true;
+  s.motor_speed = q("motor_speed", Q32{});
+  s.motor_force = q("max_motor_force", Q32{});
+  if (o.find("hertz")) s.enable_spring = true;
+  s.hertz = q("hertz", Q32{});
+  s.damping_ratio = q("damping_ratio", Q32{});
+  s.angular_hertz = q("angular_hertz", Q32{});
+  s.angular_damping_ratio = q("angular_damping_ratio", Q32{});
+  s.local_axis = vec("axis", Vec2{Q32::one(), Q32{}});
+  if (type == "revolute") {
+    s.type = JointType::revolute;
+  } else if (type == "distance" || type == "rope") {
+    s.type = JointType::distance;
+    const Vec2 a = vec("anchor_a", anchor), b = vec("anchor_b", anchor);
+    s.length = q("length", max(distance(a, b), k_min_joint_length));
+    if (type == "rope") {  // a free rope: no spring force, only pulls at its length
+      s.enable_spring = true;
+      s.enable_limit = true;
+      s.lower = Q32{};
+      s.upper = s.length;
+    } else if (!s.enable_limit) {
+      s.upper = k_max_joint_length;
+    }
+  } else if (type == "weld") {
+    s.type = JointType::weld;
+  } else if (type == "prismatic") {
+    s.type = JointType::prismatic;
+  } else if (type == "wheel") {
+    s.type = JointType::wheel;
+    s.local_axis = vec("axis", Vec2{Q32{}, Q32::one()});
+    if (!o.find("hertz")) {
+      s.hertz = Q32::one();
+      s.damping_ratio = q("damping_ratio", Q32::from_ratio(7, 10));
+    }
+    s.enable_spring = true;
+  } else if (type == "mouse") {
+    s.type = JointType::mouse;
+    s.target = vec("target", pb);
+    s.hertz = q("hertz", 5_q32);
+    s.damping_ratio = q("damping_ratio", Q32::from_ratio(7, 10));
+    s.max_force = q("max_force", 1000_q32);
+  } else {
+    s.type = JointType::motor;
+    s.local_anchor_a = {};
+    s.local_anchor_b = {};
+    s.target = vec("linear_offset", local(j.body_a, pb));
+    s.angular_offset = q("angular_offset", Q32{});
+    s.max_force = q("max_force", 1_q32);
+    s.max_torque = q("max_torque", 1_q32);
+    s.correction_factor = q("correction_factor", Q32::from_ratio(3, 10));
+  }
+  (void)pa;
+  return j;
+}
+
 SceneInput read_input(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies) {
   if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
   static const std::vector<std::string> types = {
@@ -777,10 +879,6 @@ Scene read_scene(const JsonValue& root, const SceneLimits& limits) {
     s.has_view = true;
   });
   opt(o, "world", [&](const JsonValue& v, const std::string& p) { read_world(v, p, &s.world); });
-  opt(o, "joints", [&](const JsonValue& v, const std::string& p) {
-    if (!read_array(v, p).empty())
-      fail(p, "joints are not supported yet (they arrive with the joint task); remove them or leave the array empty");
-  });
   opt(o, "bodies", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
     for (size_t i = 0; i < items.size(); ++i) {
@@ -796,6 +894,10 @@ Scene read_scene(const JsonValue& root, const SceneLimits& limits) {
   opt(o, "generators", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
     for (size_t i = 0; i < items.size(); ++i) read_generator(items[i], p + "/" + std::to_string(i), &s.bodies);
+  });
+  opt(o, "joints", [&](const JsonValue& v, const std::string& p) {
+    const auto& items = read_array(v, p);
+    for (size_t i = 0; i < items.size(); ++i) s.joints.push_back(read_joint(items[i], p + "/" + std::to_string(i), s.bodies));
   });
   opt(o, "inputs", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
@@ -878,6 +980,13 @@ Result<BuiltScene> build_world(const Scene& scene) {
     }
     built.bodies.push_back(body.value);
   }
+  for (const SceneJoint& j : scene.joints) {
+    JointSpec spec = j.spec;
+    spec.body_a = body_ref(built.bodies[static_cast<size_t>(j.body_a)]);
+    spec.body_b = body_ref(built.bodies[static_cast<size_t>(j.body_b)]);
+    const Status status = apply_command(built.world, make_create_joint(spec));
+    if (!status.ok()) return refuse(j.path, status);
+  }
   out.value = std::move(built);
   return out;
 }
@@ -912,6 +1021,13 @@ std::vector<Command> scene_create_commands(const Scene& scene) {
   std::vector<Command> out;
   out.reserve(scene.bodies.size());
   for (const SceneBody& b : scene.bodies) out.push_back(make_create_body(b.def, b.shapes));
+  // Then the joints: a fresh world gives body i the ref {i, 1}.
+  for (const SceneJoint& j : scene.joints) {
+    JointSpec spec = j.spec;
+    spec.body_a = BodyRef{static_cast<uint32_t>(j.body_a), 1};
+    spec.body_b = BodyRef{static_cast<uint32_t>(j.body_b), 1};
+    out.push_back(make_create_joint(spec));
+  }
   return out;
 }
 
@@ -920,7 +1036,8 @@ std::vector<std::string> scene_format_keys() {
   for (const auto* list : {&k_top_keys, &k_view_keys, &k_world_keys, &k_body_keys, &k_shape_common_keys,
                            &k_circle_keys, &k_capsule_keys, &k_box_keys, &k_polygon_keys, &k_segment_keys,
                            &k_chain_keys, &k_filter_keys, &k_generator_grid_keys, &k_generator_pyramid_keys,
-                           &k_generator_random_keys, &k_input_common_keys, &k_input_value_keys, &k_names})
+                           &k_generator_random_keys, &k_input_common_keys, &k_input_value_keys, &k_joint_keys,
+                           &k_names})
     out.insert(out.end(), list->begin(), list->end());
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

@@ -53,6 +53,14 @@ struct SceneInput {
   std::string path;    ///< JSON pointer of the input
 };
 
+/// One joint of a scene (built after every body, in file order).
+struct SceneJoint {
+  JointSpec spec;      ///< body refs filled in by build_world
+  int32_t body_a = 0;  ///< index into Scene::bodies
+  int32_t body_b = 0;
+  std::string path;    ///< JSON pointer of the joint
+};
+
 /// A loaded scene, ready to build.
 struct Scene {
   std::string name;         ///< the file name given to the loader
@@ -65,6 +73,7 @@ struct Scene {
   bool has_view = false;    ///< "view" given: the region a renderer shows, m
   AABB view;
   std::vector<SceneBody> bodies;   ///< explicit bodies, then generated ones
+  std::vector<SceneJoint> joints;  ///< "joints", in file order
   std::vector<SceneInput> inputs;  ///< ascending tick; file order within a tick
 };
 
@@ -98,7 +107,7 @@ struct BuiltScene {
   std::vector<BodyId> bodies;
 };
 
-/// Creates the world, bodies and shapes. On a refusal destroys what it made
+/// Creates the world, bodies, shapes and joints. On a refusal destroys what it made
 /// and returns the engine's message prefixed with the JSON pointer of the
 /// object that caused it. The caller owns the world (destroy_world).
 Result<BuiltScene> build_world(const Scene& scene);
@@ -110,8 +119,9 @@ std::vector<Command> scene_inputs_at(const BuiltScene& built, const Scene& scene
 /// refusal and returns it prefixed with the input's JSON pointer and tick.
 Status apply_scene_inputs(const BuiltScene& built, const Scene& scene, int64_t tick);
 
-/// The scene's bodies as create_body commands, in order (building them on a
-/// fresh world made from Scene::world gives the same world as build_world).
+/// The scene's bodies as create_body commands, in order, then its joints as
+/// create_joint commands (applying them to a fresh world made from
+/// Scene::world gives the same world as build_world).
 std::vector<Command> scene_create_commands(const Scene& scene);
 
 /// Every key the loader accepts (for the documentation test).

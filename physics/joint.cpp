@@ -1,0 +1,818 @@
+// joint.cpp — joint definitions, creation and destruction, the joint API,
+// the collide_connected filter and joint events (design in joint.h; the
+// solver is joint_solver.cpp).
+//
+// Every mutating function resolves the handle (refusing null, stale, foreign
+// and locked), checks every value, and only then writes: a refused call
+// changes nothing. Joint slots come from an IdPool (lowest free index first),
+// so joint indices — the solve order — depend only on the order of calls.
+#include <algorithm>
+
+#include "physics/island.h"
+#include "physics/world.h"
+
+namespace tandem {
+
+namespace {
+
+Joint& joint_at(World* w, int32_t i) { return w->joints.joints[static_cast<size_t>(i)]; }
+
+std::string q(Q32 v) { return to_string(v); }
+
+/// "function: Def.field value unit is outside [lo, hi] unit".
+bool check_range(const char* function, const char* def_name, const char* field, Q32 value, Q32 lo, Q32 hi,
+                 const char* unit, Status* out) {
+  if (lo <= value && value <= hi) return true;
+  std::string u = *unit != 0 ? std::string(" ") + unit : std::string();
+  *out = make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name + "." + field + " " +
+                                                       q(value) + u + " is outside [" + q(lo) + ", " + q(hi) + "]" + u);
+  return false;
+}
+
+bool check_vec(const char* function, const char* def_name, const char* field, Vec2 v, Q32 limit, const char* unit,
+               Status* out) {
+  if (-limit <= v.x && v.x <= limit && -limit <= v.y && v.y <= limit) return true;
+  *out = make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name + "." + field + " " +
+                                                       format_vec2(v) + " " + unit + " has a component outside [" +
+                                                       q(-limit) + ", " + q(limit) + "] " + unit);
+  return false;
+}
+
+/// A unit axis: |axis|² within 2e-6 of 1 (so |axis| within 1e-6).
+bool check_axis(const char* function, const char* def_name, Vec2 axis, Status* out) {
+  const Q32 tolerance = Q32::from_ratio(2, 1000000);
+  const bool finite = abs(axis.x) <= Q32::from_int(2) && abs(axis.y) <= Q32::from_int(2);
+  if (finite && abs(length_squared(axis) - Q32::one()) <= tolerance) return true;
+  *out = make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name + ".local_axis_a " +
+                                                       format_vec2(axis) +
+                                                       " must be a unit vector (|axis| within 1e-6 of 1)");
+  return false;
+}
+
+bool check_order(const char* function, const char* def_name, const char* lo_name, Q32 lo, const char* hi_name, Q32 hi,
+                 Status* out) {
+  if (lo <= hi) return true;
+  *out = make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name + "." + lo_name + " " +
+                                                       q(lo) + " is above " + def_name + "." + hi_name + " " + q(hi));
+  return false;
+}
+
+/// Resolves the base's bodies and checks the shared fields. Writes the world
+/// and body indices.
+Status check_base(WorldId world_id, const JointBaseDef& base, int32_t cookie, const char* function,
+                  const char* def_name, World** out_world, int32_t* out_a, int32_t* out_b) {
+  World* w = nullptr;
+  Status s = resolve_world(world_id, function, true, &w);
+  if (!s.ok()) return s;
+  if (cookie != k_def_cookie) {
+    return make_status(StatusCode::invalid_definition, std::string(function) + ": the " + def_name +
+                                                           " was not made by its default_*_joint_def()");
+  }
+  int32_t a = 0, b = 0;
+  World* wa = nullptr;
+  s = resolve_body(base.body_a, (std::string(function) + ": " + def_name + ".base.body_a").c_str(), true, world_id, &wa,
+                   &a);
+  if (!s.ok()) return s;
+  s = resolve_body(base.body_b, (std::string(function) + ": " + def_name + ".base.body_b").c_str(), true, world_id, &wa,
+                   &b);
+  if (!s.ok()) return s;
+  if (a == b) {
+    return make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name +
+                                                         ".base.body_a and base.body_b are the same " +
+                                                         describe(base.body_a) + "; a joint needs two bodies");
+  }
+  if (w->bodies[static_cast<size_t>(a)].type == BodyType::static_body &&
+      w->bodies[static_cast<size_t>(b)].type == BodyType::static_body) {
+    return make_status(StatusCode::invalid_argument, std::string(function) + ": " + def_name +
+                                                         ".base.body_a and base.body_b are both static");
+  }
+  if (!check_vec(function, def_name, "base.local_anchor_a", base.local_anchor_a, k_max_shape_size, "m", &s)) return s;
+  if (!check_vec(function, def_name, "base.local_anchor_b", base.local_anchor_b, k_max_shape_size, "m", &s)) return s;
+  if (!check_range(function, def_name, "base.break_force", base.break_force, Q32::zero(), k_max_joint_force, "N", &s))
+    return s;
+  if (!check_range(function, def_name, "base.break_torque", base.break_torque, Q32::zero(), k_max_joint_torque, "N·m",
+                   &s))
+    return s;
+  if (w->joint_pool.alive_count >= k_max_bodies) {
+    return make_status(StatusCode::capacity_exceeded, std::string(function) + ": " + describe(world_id) +
+                                                          " already has " + std::to_string(k_max_bodies) + " joints");
+  }
+  *out_world = w;
+  *out_a = a;
+  *out_b = b;
+  return s;
+}
+
+bool check_spring(const char* function, const char* def_name, const char* hertz_name, Q32 hertz,
+                  const char* ratio_name, Q32 ratio, Status* s) {
+  return check_range(function, def_name, hertz_name, hertz, Q32::zero(), k_max_joint_hertz, "Hz", s) &&
+         check_range(function, def_name, ratio_name, ratio, Q32::zero(), k_max_joint_damping_ratio, "", s);
+}
+
+bool check_angle(const char* function, const char* def_name, const char* field, Q32 angle, Status* s) {
+  return check_range(function, def_name, field, angle, -k_pi, k_pi, "rad", s);
+}
+
+/// Allocates the slot and fills the shared fields.
+Result<JointId> add_joint(World* w, int32_t a, int32_t b, const JointBaseDef& base, JointType type, Joint joint) {
+  joint.type = type;
+  joint.body_a = a;
+  joint.body_b = b;
+  joint.local_anchor_a = base.local_anchor_a;
+  joint.local_anchor_b = base.local_anchor_b;
+  joint.collide_connected = base.collide_connected;
+  joint.break_force = base.break_force;
+  joint.break_torque = base.break_torque;
+  joint.user_data = base.user_data;
+  const int32_t index = id_pool_allocate(&w->joint_pool);
+  if (static_cast<size_t>(index) >= w->joints.joints.size()) w->joints.joints.resize(static_cast<size_t>(index) + 1);
+  joint_at(w, index) = joint;
+  // Event buffers never grow inside a step: room for every joint to break.
+  const size_t room = static_cast<size_t>(w->joint_pool.alive_count) + w->joints.pending.size();
+  if (w->joints.events.capacity() < room) w->joints.events.reserve(room * 2);
+  rebuild_joint_filter(w);
+  wake_body_island(w, a);
+  wake_body_island(w, b);
+  Result<JointId> r;
+  r.value = make_joint_id(*w, index);
+  return r;
+}
+
+Status resolve_joint(JointId id, const char* function, bool mutating, World** out_world, int32_t* out_index) {
+  return resolve_handle(function, "joint", describe(id), id.index1, id.generation, id.world, WorldId{}, mutating,
+                        &World::joint_pool, out_world, out_index);
+}
+
+bool find_joint(JointId id, World** out_world, int32_t* out_index) {
+  return find_handle(id.index1, id.generation, id.world, &World::joint_pool, out_world, out_index);
+}
+
+template <typename T, typename F>
+T get_joint(JointId id, T fallback, F f) {
+  World* w = nullptr;
+  int32_t i = 0;
+  if (!find_joint(id, &w, &i)) return fallback;
+  return f(*w, joint_at(w, i));
+}
+
+/// Resolves, runs `change` on a copy, and stores the copy when ok; wakes the
+/// bodies.
+template <typename F>
+Status set_joint(JointId id, const char* function, F change) {
+  World* w = nullptr;
+  int32_t i = 0;
+  Status s = resolve_joint(id, function, true, &w, &i);
+  if (!s.ok()) return s;
+  Joint copy = joint_at(w, i);
+  s = change(*w, &copy);
+  if (!s.ok()) return s;
+  joint_at(w, i) = copy;
+  wake_body_island(w, copy.body_a);
+  wake_body_island(w, copy.body_b);
+  return s;
+}
+
+Status wrong_kind(const char* function, JointId id, const char* what) {
+  return make_status(StatusCode::invalid_argument,
+                     std::string(function) + ": " + describe(id) + " is a kind of joint without " + what);
+}
+
+Q32 joint_frame_angle(const World& w, const Joint& j) {
+  const Rot qa = w.body_sims[static_cast<size_t>(j.body_a)].transform.q;
+  const Rot qb = w.body_sims[static_cast<size_t>(j.body_b)].transform.q;
+  return relative_angle(qa, qb);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Defaults
+// ---------------------------------------------------------------------------
+
+RevoluteJointDef default_revolute_joint_def() {
+  RevoluteJointDef d{};
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+DistanceJointDef default_distance_joint_def() {
+  DistanceJointDef d{};
+  d.length = 1_q32;
+  d.min_length = 0_q32;
+  d.max_length = k_max_joint_length;
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+WeldJointDef default_weld_joint_def() {
+  WeldJointDef d{};
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+PrismaticJointDef default_prismatic_joint_def() {
+  PrismaticJointDef d{};
+  d.local_axis_a = {1_q32, 0_q32};
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+MouseJointDef default_mouse_joint_def() {
+  MouseJointDef d{};
+  d.hertz = 5_q32;
+  d.damping_ratio = 0.7_q32;
+  d.max_force = 1000_q32;
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+WheelJointDef default_wheel_joint_def() {
+  WheelJointDef d{};
+  d.local_axis_a = {0_q32, 1_q32};
+  d.enable_spring = true;
+  d.hertz = 1_q32;
+  d.damping_ratio = 0.7_q32;
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+MotorJointDef default_motor_joint_def() {
+  MotorJointDef d{};
+  d.max_force = 1_q32;
+  d.max_torque = 1_q32;
+  d.correction_factor = 0.3_q32;
+  d.internal_cookie = k_def_cookie;
+  return d;
+}
+
+// ---------------------------------------------------------------------------
+// Creation
+// ---------------------------------------------------------------------------
+
+Result<JointId> create_revolute_joint(WorldId world, const RevoluteJointDef& def) {
+  const char* fn = "create_revolute_joint";
+  const char* dn = "RevoluteJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
+      !check_angle(fn, dn, "lower_angle", def.lower_angle, &s) ||
+      !check_angle(fn, dn, "upper_angle", def.upper_angle, &s) ||
+      !check_order(fn, dn, "lower_angle", def.lower_angle, "upper_angle", def.upper_angle, &s) ||
+      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_angular_speed, k_max_angular_speed, "rad/s", &s) ||
+      !check_range(fn, dn, "max_motor_torque", def.max_motor_torque, Q32::zero(), k_max_joint_torque, "N·m", &s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s)) {
+    return r;
+  }
+  Joint j;
+  j.reference_angle = def.reference_angle;
+  j.enable_limit = def.enable_limit;
+  j.lower = def.lower_angle;
+  j.upper = def.upper_angle;
+  j.enable_motor = def.enable_motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_force = def.max_motor_torque;
+  j.enable_spring = def.enable_spring;
+  j.hertz = def.hertz;
+  j.damping_ratio = def.damping_ratio;
+  return add_joint(w, a, b, def.base, JointType::revolute, j);
+}
+
+Result<JointId> create_distance_joint(WorldId world, const DistanceJointDef& def) {
+  const char* fn = "create_distance_joint";
+  const char* dn = "DistanceJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_range(fn, dn, "length", def.length, k_min_joint_length, k_max_joint_length, "m", &s) ||
+      !check_range(fn, dn, "max_length", def.max_length, k_min_joint_length, k_max_joint_length, "m", &s) ||
+      !check_range(fn, dn, "min_length", def.min_length, Q32::zero(), def.max_length, "m", &s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s) ||
+      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_linear_speed, k_max_linear_speed, "m/s", &s) ||
+      !check_range(fn, dn, "max_motor_force", def.max_motor_force, Q32::zero(), k_max_joint_force, "N", &s)) {
+    return r;
+  }
+  Joint j;
+  j.length = def.length;
+  j.enable_spring = def.enable_spring;
+  j.hertz = def.hertz;
+  j.damping_ratio = def.damping_ratio;
+  j.enable_limit = def.enable_limit;
+  j.lower = def.min_length;
+  j.upper = def.max_length;
+  j.enable_motor = def.enable_motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_force = def.max_motor_force;
+  return add_joint(w, a, b, def.base, JointType::distance, j);
+}
+
+Result<JointId> create_weld_joint(WorldId world, const WeldJointDef& def) {
+  const char* fn = "create_weld_joint";
+  const char* dn = "WeldJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
+      !check_spring(fn, dn, "linear_hertz", def.linear_hertz, "linear_damping_ratio", def.linear_damping_ratio, &s) ||
+      !check_spring(fn, dn, "angular_hertz", def.angular_hertz, "angular_damping_ratio", def.angular_damping_ratio,
+                    &s)) {
+    return r;
+  }
+  Joint j;
+  j.reference_angle = def.reference_angle;
+  j.hertz = def.linear_hertz;
+  j.damping_ratio = def.linear_damping_ratio;
+  j.angular_hertz = def.angular_hertz;
+  j.angular_damping_ratio = def.angular_damping_ratio;
+  return add_joint(w, a, b, def.base, JointType::weld, j);
+}
+
+Result<JointId> create_prismatic_joint(WorldId world, const PrismaticJointDef& def) {
+  const char* fn = "create_prismatic_joint";
+  const char* dn = "PrismaticJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_axis(fn, dn, def.local_axis_a, &s) || !check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
+      !check_range(fn, dn, "lower_translation", def.lower_translation, -k_max_joint_length, k_max_joint_length, "m",
+                   &s) ||
+      !check_range(fn, dn, "upper_translation", def.upper_translation, -k_max_joint_length, k_max_joint_length, "m",
+                   &s) ||
+      !check_order(fn, dn, "lower_translation", def.lower_translation, "upper_translation", def.upper_translation,
+                   &s) ||
+      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_linear_speed, k_max_linear_speed, "m/s", &s) ||
+      !check_range(fn, dn, "max_motor_force", def.max_motor_force, Q32::zero(), k_max_joint_force, "N", &s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s)) {
+    return r;
+  }
+  Joint j;
+  j.local_axis_a = normalize(def.local_axis_a);
+  j.reference_angle = def.reference_angle;
+  j.enable_limit = def.enable_limit;
+  j.lower = def.lower_translation;
+  j.upper = def.upper_translation;
+  j.enable_motor = def.enable_motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_force = def.max_motor_force;
+  j.enable_spring = def.enable_spring;
+  j.hertz = def.hertz;
+  j.damping_ratio = def.damping_ratio;
+  return add_joint(w, a, b, def.base, JointType::prismatic, j);
+}
+
+Result<JointId> create_mouse_joint(WorldId world, const MouseJointDef& def) {
+  const char* fn = "create_mouse_joint";
+  const char* dn = "MouseJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!aabb_contains_point(w->def.bounds, def.target)) {
+    s = make_status(StatusCode::invalid_argument, std::string(fn) + ": " + dn + ".target " + format_vec2(def.target) +
+                                                      " m is outside the world bounds");
+    return r;
+  }
+  if (!check_range(fn, dn, "hertz", def.hertz, Q32::epsilon(), k_max_joint_hertz, "Hz", &s) ||
+      !check_range(fn, dn, "damping_ratio", def.damping_ratio, Q32::zero(), k_max_joint_damping_ratio, "", &s) ||
+      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", &s)) {
+    return r;
+  }
+  Joint j;
+  j.target = def.target;
+  j.hertz = def.hertz;
+  j.damping_ratio = def.damping_ratio;
+  j.max_force = def.max_force;
+  return add_joint(w, a, b, def.base, JointType::mouse, j);
+}
+
+Result<JointId> create_wheel_joint(WorldId world, const WheelJointDef& def) {
+  const char* fn = "create_wheel_joint";
+  const char* dn = "WheelJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_axis(fn, dn, def.local_axis_a, &s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s) ||
+      !check_range(fn, dn, "lower_translation", def.lower_translation, -k_max_joint_length, k_max_joint_length, "m",
+                   &s) ||
+      !check_range(fn, dn, "upper_translation", def.upper_translation, -k_max_joint_length, k_max_joint_length, "m",
+                   &s) ||
+      !check_order(fn, dn, "lower_translation", def.lower_translation, "upper_translation", def.upper_translation,
+                   &s) ||
+      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_angular_speed, k_max_angular_speed, "rad/s", &s) ||
+      !check_range(fn, dn, "max_motor_torque", def.max_motor_torque, Q32::zero(), k_max_joint_torque, "N·m", &s)) {
+    return r;
+  }
+  Joint j;
+  j.local_axis_a = normalize(def.local_axis_a);
+  j.enable_spring = def.enable_spring;
+  j.hertz = def.hertz;
+  j.damping_ratio = def.damping_ratio;
+  j.enable_limit = def.enable_limit;
+  j.lower = def.lower_translation;
+  j.upper = def.upper_translation;
+  j.enable_motor = def.enable_motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_force = def.max_motor_torque;
+  return add_joint(w, a, b, def.base, JointType::wheel, j);
+}
+
+Result<JointId> create_motor_joint(WorldId world, const MotorJointDef& def) {
+  const char* fn = "create_motor_joint";
+  const char* dn = "MotorJointDef";
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+  Status& s = r.status;
+  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  if (!s.ok()) return r;
+  if (!check_vec(fn, dn, "linear_offset", def.linear_offset, k_max_shape_size, "m", &s) ||
+      !check_angle(fn, dn, "angular_offset", def.angular_offset, &s) ||
+      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", &s) ||
+      !check_range(fn, dn, "max_torque", def.max_torque, Q32::zero(), k_max_joint_torque, "N·m", &s) ||
+      !check_range(fn, dn, "correction_factor", def.correction_factor, Q32::zero(), Q32::one(), "", &s)) {
+    return r;
+  }
+  Joint j;
+  j.target = def.linear_offset;
+  j.angular_offset = def.angular_offset;
+  j.max_force = def.max_force;
+  j.max_torque = def.max_torque;
+  j.correction_factor = def.correction_factor;
+  JointBaseDef base = def.base;
+  base.local_anchor_a = {};
+  base.local_anchor_b = {};
+  return add_joint(w, a, b, base, JointType::motor, j);
+}
+
+// ---------------------------------------------------------------------------
+// Destruction, lookup
+// ---------------------------------------------------------------------------
+
+JointId make_joint_id(const World& world, int32_t index) {
+  JointId id;
+  id.index1 = static_cast<uint32_t>(index) + 1u;
+  id.generation = id_pool_generation(world.joint_pool, index);
+  id.world = world.id;
+  return id;
+}
+
+std::string describe(JointId id) {
+  if (is_null(id)) return "null joint";
+  return "joint {index " + std::to_string(id.index1 - 1) + ", generation " + std::to_string(id.generation) + "}";
+}
+
+void free_joint(World* w, int32_t index) {
+  joint_at(w, index) = Joint{};
+  id_pool_free(&w->joint_pool, index);
+}
+
+Status destroy_joint(JointId id) {
+  World* w = nullptr;
+  int32_t i = 0;
+  Status s = resolve_joint(id, "destroy_joint", true, &w, &i);
+  if (!s.ok()) return s;
+  const Joint j = joint_at(w, i);
+  free_joint(w, i);
+  rebuild_joint_filter(w);
+  wake_body_island(w, j.body_a);
+  wake_body_island(w, j.body_b);
+  return s;
+}
+
+void destroy_body_joints(World* w, int32_t body_index) {
+  if (w->joint_pool.alive_count == 0) return;
+  const int32_t end = id_pool_capacity(w->joint_pool);
+  bool any = false;
+  for (int32_t i = 0; i < end; ++i) {
+    if (!id_pool_is_alive(w->joint_pool, i)) continue;
+    const Joint j = joint_at(w, i);
+    if (j.body_a != body_index && j.body_b != body_index) continue;
+    JointEvent e;
+    e.joint = make_joint_id(*w, i);
+    e.body_a = make_body_id(*w, j.body_a);
+    e.body_b = make_body_id(*w, j.body_b);
+    e.kind = JointEventKind::destroyed_with_body;
+    e.user_data = j.user_data;
+    w->joints.pending.push_back(e);
+    free_joint(w, i);
+    wake_body_island(w, j.body_a == body_index ? j.body_b : j.body_a);
+    any = true;
+  }
+  if (any) rebuild_joint_filter(w);
+  const size_t room = static_cast<size_t>(w->joint_pool.alive_count) + w->joints.pending.size();
+  if (w->joints.events.capacity() < room) w->joints.events.reserve(room * 2);
+}
+
+bool joint_is_valid(JointId id) {
+  World* w = nullptr;
+  int32_t i = 0;
+  return find_joint(id, &w, &i);
+}
+
+Status joint_check(JointId id) {
+  World* w = nullptr;
+  int32_t i = 0;
+  return resolve_joint(id, "joint_check", false, &w, &i);
+}
+
+JointType joint_type(JointId id) {
+  return get_joint(id, JointType::revolute, [](const World&, const Joint& j) { return j.type; });
+}
+BodyId joint_body_a(JointId id) {
+  return get_joint(id, BodyId{}, [](const World& w, const Joint& j) { return make_body_id(w, j.body_a); });
+}
+BodyId joint_body_b(JointId id) {
+  return get_joint(id, BodyId{}, [](const World& w, const Joint& j) { return make_body_id(w, j.body_b); });
+}
+uint64_t joint_user_data(JointId id) {
+  return get_joint(id, uint64_t{0}, [](const World&, const Joint& j) { return j.user_data; });
+}
+Vec2 joint_reaction_force(JointId id) {
+  return get_joint(id, Vec2{}, [](const World&, const Joint& j) { return j.reaction_force; });
+}
+Q32 joint_reaction_torque(JointId id) {
+  return get_joint(id, Q32::zero(), [](const World&, const Joint& j) { return j.reaction_torque; });
+}
+
+Vec2 joint_world_anchor_a(JointId id) {
+  return get_joint(id, Vec2{}, [](const World& w, const Joint& j) {
+    if (j.type == JointType::mouse) return j.target;
+    return transform_point(w.body_sims[static_cast<size_t>(j.body_a)].transform, j.local_anchor_a);
+  });
+}
+
+Vec2 joint_world_anchor_b(JointId id) {
+  return get_joint(id, Vec2{}, [](const World& w, const Joint& j) {
+    return transform_point(w.body_sims[static_cast<size_t>(j.body_b)].transform, j.local_anchor_b);
+  });
+}
+
+Q32 joint_angle(JointId id) {
+  return get_joint(id, Q32::zero(), [](const World& w, const Joint& j) {
+    if (j.type == JointType::distance || j.type == JointType::mouse || j.type == JointType::motor) return Q32::zero();
+    const Q32 a = joint_frame_angle(w, j) - j.reference_angle;
+    // Back into [−π, π].
+    if (a > k_pi) return a - k_two_pi;
+    if (a < -k_pi) return a + k_two_pi;
+    return a;
+  });
+}
+
+Q32 joint_translation(JointId id) {
+  return get_joint(id, Q32::zero(), [](const World& w, const Joint& j) {
+    const Transform ta = w.body_sims[static_cast<size_t>(j.body_a)].transform;
+    const Transform tb = w.body_sims[static_cast<size_t>(j.body_b)].transform;
+    const Vec2 d = transform_point(tb, j.local_anchor_b) - transform_point(ta, j.local_anchor_a);
+    if (j.type == JointType::distance) return length(d);
+    if (j.type == JointType::prismatic || j.type == JointType::wheel) return dot(d, rotate(ta.q, j.local_axis_a));
+    return Q32::zero();
+  });
+}
+
+int32_t world_joints(WorldId world, JointId* out_ids, int32_t capacity) {
+  const World* w = find_world(world);
+  if (w == nullptr) return 0;
+  int32_t n = 0;
+  const int32_t end = id_pool_capacity(w->joint_pool);
+  for (int32_t i = 0; i < end; ++i) {
+    if (!id_pool_is_alive(w->joint_pool, i)) continue;
+    if (n < capacity && out_ids != nullptr) out_ids[n] = make_joint_id(*w, i);
+    ++n;
+  }
+  return n;
+}
+
+int32_t body_joints(BodyId body, JointId* out_ids, int32_t capacity) {
+  World* w = nullptr;
+  int32_t b = 0;
+  if (!find_body(body, &w, &b)) return 0;
+  int32_t n = 0;
+  const int32_t end = id_pool_capacity(w->joint_pool);
+  for (int32_t i = 0; i < end; ++i) {
+    if (!id_pool_is_alive(w->joint_pool, i)) continue;
+    const Joint& j = w->joints.joints[static_cast<size_t>(i)];
+    if (j.body_a != b && j.body_b != b) continue;
+    if (n < capacity && out_ids != nullptr) out_ids[n] = make_joint_id(*w, i);
+    ++n;
+  }
+  return n;
+}
+
+// ---------------------------------------------------------------------------
+// Setters
+// ---------------------------------------------------------------------------
+
+namespace {
+
+bool has_motor(JointType t) {
+  return t == JointType::revolute || t == JointType::prismatic || t == JointType::wheel || t == JointType::distance;
+}
+bool has_limit(JointType t) { return has_motor(t); }
+bool has_spring(JointType t) { return has_motor(t); }
+bool angular_motor(JointType t) { return t == JointType::revolute || t == JointType::wheel; }
+
+}  // namespace
+
+Status joint_enable_motor(JointId id, bool enable) {
+  return set_joint(id, "joint_enable_motor", [&](const World&, Joint* j) {
+    if (!has_motor(j->type)) return wrong_kind("joint_enable_motor", id, "a motor");
+    j->enable_motor = enable;
+    return Status{};
+  });
+}
+
+Status joint_set_motor_speed(JointId id, Q32 speed) {
+  const char* fn = "joint_set_motor_speed";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (!has_motor(j->type)) return wrong_kind(fn, id, "a motor");
+    Status s;
+    const bool angular = angular_motor(j->type);
+    const Q32 lim = angular ? k_max_angular_speed : k_max_linear_speed;
+    if (!check_range(fn, "joint", "motor_speed", speed, -lim, lim, angular ? "rad/s" : "m/s", &s)) return s;
+    j->motor_speed = speed;
+    return s;
+  });
+}
+
+Status joint_set_max_motor_force(JointId id, Q32 force) {
+  const char* fn = "joint_set_max_motor_force";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (!has_motor(j->type)) return wrong_kind(fn, id, "a motor");
+    Status s;
+    const bool angular = angular_motor(j->type);
+    if (!check_range(fn, "joint", angular ? "max_motor_torque" : "max_motor_force", force, Q32::zero(),
+                     angular ? k_max_joint_torque : k_max_joint_force, angular ? "N·m" : "N", &s)) {
+      return s;
+    }
+    j->max_motor_force = force;
+    return s;
+  });
+}
+
+Status joint_enable_limit(JointId id, bool enable) {
+  return set_joint(id, "joint_enable_limit", [&](const World&, Joint* j) {
+    if (!has_limit(j->type)) return wrong_kind("joint_enable_limit", id, "limits");
+    j->enable_limit = enable;
+    return Status{};
+  });
+}
+
+Status joint_set_limits(JointId id, Q32 lower, Q32 upper) {
+  const char* fn = "joint_set_limits";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (!has_limit(j->type)) return wrong_kind(fn, id, "limits");
+    Status s;
+    if (j->type == JointType::revolute) {
+      if (!check_angle(fn, "joint", "lower", lower, &s) || !check_angle(fn, "joint", "upper", upper, &s)) return s;
+    } else if (j->type == JointType::distance) {
+      if (!check_range(fn, "joint", "upper (max_length)", upper, k_min_joint_length, k_max_joint_length, "m", &s) ||
+          !check_range(fn, "joint", "lower (min_length)", lower, Q32::zero(), upper, "m", &s)) {
+        return s;
+      }
+    } else if (!check_range(fn, "joint", "lower", lower, -k_max_joint_length, k_max_joint_length, "m", &s) ||
+               !check_range(fn, "joint", "upper", upper, -k_max_joint_length, k_max_joint_length, "m", &s)) {
+      return s;
+    }
+    if (!check_order(fn, "joint", "lower", lower, "upper", upper, &s)) return s;
+    j->lower = lower;
+    j->upper = upper;
+    return s;
+  });
+}
+
+Status joint_enable_spring(JointId id, bool enable) {
+  return set_joint(id, "joint_enable_spring", [&](const World&, Joint* j) {
+    if (!has_spring(j->type)) return wrong_kind("joint_enable_spring", id, "a spring");
+    j->enable_spring = enable;
+    return Status{};
+  });
+}
+
+Status joint_set_spring(JointId id, Q32 hertz, Q32 damping_ratio) {
+  const char* fn = "joint_set_spring";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (!has_spring(j->type) && j->type != JointType::weld && j->type != JointType::mouse) {
+      return wrong_kind(fn, id, "a spring");
+    }
+    Status s;
+    const Q32 lo = j->type == JointType::mouse ? Q32::epsilon() : Q32::zero();
+    if (!check_range(fn, "joint", "hertz", hertz, lo, k_max_joint_hertz, "Hz", &s) ||
+        !check_range(fn, "joint", "damping_ratio", damping_ratio, Q32::zero(), k_max_joint_damping_ratio, "", &s)) {
+      return s;
+    }
+    j->hertz = hertz;
+    j->damping_ratio = damping_ratio;
+    return s;
+  });
+}
+
+Status joint_set_length(JointId id, Q32 length) {
+  const char* fn = "joint_set_length";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (j->type != JointType::distance) return wrong_kind(fn, id, "a length");
+    Status s;
+    if (!check_range(fn, "joint", "length", length, k_min_joint_length, k_max_joint_length, "m", &s)) return s;
+    j->length = length;
+    return s;
+  });
+}
+
+Status joint_set_target(JointId id, Vec2 target) {
+  const char* fn = "joint_set_target";
+  return set_joint(id, fn, [&](const World& w, Joint* j) {
+    if (j->type != JointType::mouse) return wrong_kind(fn, id, "a target");
+    if (!aabb_contains_point(w.def.bounds, target)) {
+      return make_status(StatusCode::invalid_argument,
+                         std::string(fn) + ": target " + format_vec2(target) + " m is outside the world bounds");
+    }
+    j->target = target;
+    return Status{};
+  });
+}
+
+Status joint_set_offsets(JointId id, Vec2 linear_offset, Q32 angular_offset) {
+  const char* fn = "joint_set_offsets";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    if (j->type != JointType::motor) return wrong_kind(fn, id, "offsets");
+    Status s;
+    if (!check_vec(fn, "joint", "linear_offset", linear_offset, k_max_shape_size, "m", &s) ||
+        !check_angle(fn, "joint", "angular_offset", angular_offset, &s)) {
+      return s;
+    }
+    j->target = linear_offset;
+    j->angular_offset = angular_offset;
+    return s;
+  });
+}
+
+Status joint_set_break_thresholds(JointId id, Q32 force, Q32 torque) {
+  const char* fn = "joint_set_break_thresholds";
+  return set_joint(id, fn, [&](const World&, Joint* j) {
+    Status s;
+    if (!check_range(fn, "joint", "break_force", force, Q32::zero(), k_max_joint_force, "N", &s) ||
+        !check_range(fn, "joint", "break_torque", torque, Q32::zero(), k_max_joint_torque, "N·m", &s)) {
+      return s;
+    }
+    j->break_force = force;
+    j->break_torque = torque;
+    return s;
+  });
+}
+
+// ---------------------------------------------------------------------------
+// Collision filter, events
+// ---------------------------------------------------------------------------
+
+namespace {
+uint64_t body_pair_key(int32_t a, int32_t b) {
+  const uint32_t lo = static_cast<uint32_t>(a < b ? a : b), hi = static_cast<uint32_t>(a < b ? b : a);
+  return (uint64_t{lo} << 32) | hi;
+}
+}  // namespace
+
+void rebuild_joint_filter(World* w) {
+  std::vector<uint64_t>& keys = w->joints.no_collide_keys;
+  keys.clear();
+  const int32_t end = id_pool_capacity(w->joint_pool);
+  for (int32_t i = 0; i < end; ++i) {
+    if (!id_pool_is_alive(w->joint_pool, i)) continue;
+    const Joint& j = w->joints.joints[static_cast<size_t>(i)];
+    if (!j.collide_connected) keys.push_back(body_pair_key(j.body_a, j.body_b));
+  }
+  std::sort(keys.begin(), keys.end());  // integer keys: ties are equal values, so the order is unique
+}
+
+bool joint_blocks_collision(const World& w, int32_t body_a, int32_t body_b) {
+  const std::vector<uint64_t>& keys = w.joints.no_collide_keys;
+  if (keys.empty()) return false;
+  return std::binary_search(keys.begin(), keys.end(), body_pair_key(body_a, body_b));
+}
+
+Result<std::span<const JointEvent>> world_joint_events(WorldId world) {
+  Result<std::span<const JointEvent>> r;
+  World* w = nullptr;
+  r.status = resolve_world(world, "world_joint_events", false, &w);
+  if (!r.ok()) return r;
+  r.value = std::span<const JointEvent>(w->joints.events.data(), w->joints.events.size());
+  return r;
+}
+
+}  // namespace tandem
