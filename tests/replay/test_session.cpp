@@ -191,6 +191,8 @@ TEST_CASE("session: time sync slows the peer that runs ahead", "[replay][session
   // the peer waits early instead, so it stalls far less.
   CHECK(stalls_off > 50);
   CHECK(stalls_on * 4 < stalls_off);
+  CHECK(gap_on < gap_off);
+  CHECK(idle_on > 60);  // about one frame in five waited
 }
 
 TEST_CASE("session: a one-raw-unit desync stops every peer at its tick and is located", "[replay][session]") {
