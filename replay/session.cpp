@@ -417,6 +417,14 @@ int32_t Session::frames_ahead() const {
   return static_cast<int32_t>(std::min<int64_t>(ahead, 1000));
 }
 
+uint64_t Session::remote_confirmed_through() const {
+  uint64_t m = UINT64_MAX;
+  for (uint32_t q = 0; q < endpoint_count(); ++q) {
+    if (q != config_.local_endpoint && gone_[q] == 0) m = std::min(m, remote_hash_through_[q]);
+  }
+  return m == UINT64_MAX ? 0 : m;
+}
+
 uint64_t Session::confirmed_hash(uint64_t tick) const {
   if (tick > confirmed_ || hash_tick_.empty() || hash_tick_[ring(tick)] != tick) return 0;
   return hash_[ring(tick)];

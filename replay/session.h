@@ -219,6 +219,9 @@ class Session {
   /// The hash (world, mixed with the game state) of a confirmed tick still in
   /// the ring; 0 otherwise.
   uint64_t confirmed_hash(uint64_t tick) const;
+  /// The lowest tick through which every other endpoint still connected has
+  /// sent its confirmed hashes (so they have confirmed at least this far).
+  uint64_t remote_confirmed_through() const;
   /// world_state_hash of the start state.
   uint64_t start_hash() const { return start_hash_; }
   SessionState state() const { return stop_.state; }

@@ -24,7 +24,7 @@ group=${1:-all}
 # Toolchain basics (on a fresh machine already; checked so a bare one also works).
 base=(build-essential cmake clang git ninja-build pkg-config)
 # Libraries the library, the command line and its demo use.
-libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
+libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev libenet-dev)
 # Only for scripts/test.sh: cross builds and tools/bench.
 extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev)
 # Cross rows of scripts/test.sh beyond i686/s390x (golden chains only).
