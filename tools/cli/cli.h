@@ -39,5 +39,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
 void register_bench_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 /// Adds state to `app` (cmd_state.cpp).
 void register_state_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
+/// Adds session and netplay to `app` (cmd_session.cpp).
+void register_session_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 
 }  // namespace tandem::cli
