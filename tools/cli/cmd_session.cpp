@@ -11,8 +11,11 @@
 // sync, 1 desync or a peer left, 2 bad usage or could not run.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cinttypes>
 #include <cstdio>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <thread>
@@ -240,11 +243,122 @@ void add_common(CLI::App* c, PlayArgs* a) {
   c->add_option("--inject-desync", a->inject_desync, "nudge player 0's disc by one raw unit on endpoint 1 after this tick")
       ->check(CLI::NonNegativeNumber);
   c->add_option("--frame-us", a->frame_us, "frame length in microseconds (default 16667: 60 Hz)")->check(CLI::Range(1000, 1000000));
-  c->add_option("--crates", a->crates, "crates in the arena (default 40)")->check(CLI::Range(0, 400));
+  c->add_option("--crates", a->crates, "crates in the arena (default 40)")->check(CLI::Range(0, 1000));
   c->add_option("--artifacts", a->artifacts_dir, "where a desync writes peerN.replay and peerN.state (default .)");
   c->add_option("--connect-timeout", a->connect_timeout_ms, "ms to wait for every peer (default 10000)");
   c->add_option("--timeout", a->timeout_s, "give up after this many seconds (default 120)");
   add_output_flags(c, &a->json, &a->quiet, "no progress bar");
+}
+
+
+// --- session-bench -------------------------------------------------------------
+// Rollback cost per frame (CPU time of the thread): two in-process sessions (input delay 0, bots that
+// change input every tick, so every late input is a misprediction); peer 1's
+// packets reach peer 0 `depth` frames late, so each of peer 0's frames
+// restores and re-simulates `depth` ticks, then steps one new tick (each tick
+// with its snapshot and hash, as in a game). Timed: peer 0's advance_frame.
+struct BenchArgs {
+  std::vector<uint32_t> bodies{100, 1000};
+  std::vector<uint32_t> depths{2, 4, 8};
+  uint32_t frames = 120;
+  uint32_t repeats = 3;
+  bool json = false, quiet = false;
+};
+
+// CPU time of this thread, ms (the VM is shared: wall time measures the neighbours).
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
+int run_session_bench(const BenchArgs& a, const GlobalOptions& g) {
+  const bool json = a.json || g.json;
+  Json rows = Json::array();
+  if (!json) std::printf("%7s %6s %12s %12s %10s %12s\n", "bodies", "depth", "ms/frame", "ms/frame max", "rollbacks", "resim/frame");
+  for (uint32_t bodies : a.bodies) {
+    for (uint32_t depth : a.depths) {
+      if (depth < 1 || depth > 30) return fail("session-bench", "--depths must be 1…30");
+      const uint32_t crates = bodies > 6 ? bodies - 6 : 0;  // 4 walls + 2 discs
+      if (crates > arena::k_max_crates) return fail("session-bench", "--bodies at most " + std::to_string(arena::k_max_crates + 6));
+      std::vector<double> medians;
+      uint64_t rollbacks = 0, resim = 0, measured = 0;
+      double worst = 0;
+      for (uint32_t rep = 0; rep < a.repeats; ++rep) {
+        struct BenchPeer {
+          OwnedWorld world;
+          arena::Game game;
+          Session session;
+          std::vector<std::pair<uint64_t, std::vector<uint8_t>>> inbox;  // (due frame, bytes)
+        };
+        BenchPeer peers[2];
+        uint64_t frame = 0;
+        for (uint32_t e = 0; e < 2; ++e) {
+          peers[e].world.id = create_world(default_world_def()).value;
+          const Status s = peers[e].game.build(peers[e].world.id, 2, crates);
+          if (!s.ok()) return fail("session-bench", s.message);
+          SessionConfig c;
+          c.mode = SessionMode::rollback;
+          c.player_count = 2;
+          c.local_endpoint = e;
+          c.input_bytes = arena::k_input_bytes;
+          c.input_delay = 0;
+          c.prediction_window = std::max<uint32_t>(8, depth + 1);
+          c.history_ticks = c.prediction_window + 2;
+          c.disconnect_timeout_frames = 0;
+          BenchPeer* other = &peers[1 - e];
+          const uint64_t delay = e == 1 ? depth : 0;
+          const Status st = peers[e].session.start(peers[e].world.id, c, peers[e].game.callbacks([other, delay, &frame](uint32_t, std::span<const uint8_t> b) {
+            other->inbox.emplace_back(frame + delay, std::vector<uint8_t>(b.begin(), b.end()));
+          }));
+          if (!st.ok()) return fail("session-bench", st.message);
+        }
+        std::vector<double> times;
+        uint8_t in[arena::k_input_bytes];
+        for (uint32_t f = 0; f < a.frames + 60; ++f) {
+          ++frame;
+          for (uint32_t e = 0; e < 2; ++e) {
+            BenchPeer& p = peers[e];
+            std::vector<std::pair<uint64_t, std::vector<uint8_t>>> keep;
+            for (auto& [due, bytes] : p.inbox) {
+              if (due <= frame) {
+                p.session.receive(1 - e, bytes);
+              } else {
+                keep.emplace_back(due, std::move(bytes));
+              }
+            }
+            p.inbox.swap(keep);
+            arena::bot_input(1, e, p.session.current_tick() + 1, 1, in);
+            const SessionStats before = p.session.stats();
+            const double t0 = thread_cpu_ms();
+            (void)p.session.advance_frame(in);
+            const double ms = thread_cpu_ms() - t0;
+            if (e == 0 && f >= 60) {
+              times.push_back(ms);
+              rollbacks += p.session.stats().rollbacks - before.rollbacks;
+              resim += p.session.stats().resimulated_ticks - before.resimulated_ticks;
+              ++measured;
+            }
+          }
+        }
+        if (peers[0].session.state() != SessionState::running) return fail("session-bench", peers[0].session.stop_info().message);
+        std::sort(times.begin(), times.end());
+        medians.push_back(times[times.size() / 2]);
+        worst = std::max(worst, times.back());
+      }
+      std::sort(medians.begin(), medians.end());
+      const double median = medians[medians.size() / 2];
+      const double resim_per_frame = measured == 0 ? 0 : static_cast<double>(resim) / static_cast<double>(measured);
+      if (json) {
+        rows.push_back(Json{{"bodies", bodies}, {"depth", depth}, {"ms_per_frame_median", median}, {"ms_per_frame_max", worst},
+                            {"rollbacks", rollbacks}, {"resimulated_per_frame", resim_per_frame}});
+      } else {
+        std::printf("%7u %6u %12.3f %12.3f %10" PRIu64 " %12.2f\n", bodies, depth, median, worst, rollbacks, resim_per_frame);
+      }
+    }
+  }
+  if (json) std::printf("%s\n", rows.dump(2).c_str());
+  return 0;
 }
 
 }  // namespace
@@ -271,6 +385,16 @@ void register_session_commands(CLI::App& app, const GlobalOptions& options, std:
       "  tandem netplay --players 4 --mode rollback --loss 10 --latency 60 --jitter 20\n"
       "  tandem netplay --players 2 --inject-desync 300 --artifacts /tmp");
   commands->push_back({netplay, [na, &options] { return run_netplay(*na, options); }});
+
+  auto* bench = app.add_subcommand("session-bench", "Rollback cost per frame of a 2-player session (in process, no sockets)");
+  auto ba = std::make_shared<BenchArgs>();
+  bench->add_option("--bodies", ba->bodies, "body counts (default 100,1000)")->delimiter(',');
+  bench->add_option("--depths", ba->depths, "rollback depths in ticks (default 2,4,8)")->delimiter(',');
+  bench->add_option("--frames", ba->frames, "timed frames per run (default 120)")->check(CLI::Range(10, 100000));
+  bench->add_option("--repeats", ba->repeats, "runs per row; the median of the runs' medians is shown (default 3)")
+      ->check(CLI::Range(1, 100));
+  add_output_flags(bench, &ba->json, &ba->quiet, "(no effect)");
+  commands->push_back({bench, [ba, &options] { return run_session_bench(*ba, options); }});
 }
 
 }  // namespace tandem::cli

@@ -24,6 +24,8 @@ namespace tandem::arena {
 
 using namespace tandem::literals;
 
+/// Most crates.
+inline constexpr uint32_t k_max_crates = 1000;
 /// Input bytes per player per tick.
 inline constexpr uint32_t k_input_bytes = 4;
 
@@ -33,7 +35,7 @@ struct Game {
   std::vector<int64_t> scores;
 
   /// Builds the arena into an empty world: walls, `player_count` discs on a
-  /// circle of radius 6 m and `crates` boxes (0…400) on a grid. Same calls,
+  /// circle of radius 6 m and `crates` boxes (0…1000) on a grid. Same calls,
   /// same refs on every peer.
   Status build(WorldId world, uint32_t player_count, uint32_t crates) {
     players.clear();
@@ -73,19 +75,20 @@ struct Game {
       if (!s.ok()) return s.status;
       players.push_back(body_ref(b.value));
     }
-    if (crates > 400) crates = 400;
+    if (crates > k_max_crates) crates = k_max_crates;
     for (uint32_t i = 0; i < crates; ++i) {
       BodyDef bd = default_body_def();
       bd.type = BodyType::dynamic_body;
       bd.gravity_scale = Q32::zero();
       bd.linear_damping = 1_q32;
       bd.angular_damping = 1_q32;
-      bd.position = Vec2{Q32::from_int(static_cast<int64_t>(i % 20) - 10) + 0.5_q32,
-                         Q32::from_int(static_cast<int64_t>(i / 20) - 10) + 0.5_q32};
+      // 36 columns 0.6 m apart from (−10.5, −10.5): 1000 crates fill 28 rows.
+      bd.position = Vec2{Q32::from_ratio(static_cast<int64_t>(i % 36) * 3, 5) - 10.5_q32,
+                         Q32::from_ratio(static_cast<int64_t>(i / 36) * 3, 5) - 10.5_q32};
       const Result<BodyId> b = create_body(world, bd);
       if (!b.ok()) return b.status;
       Polygon box;
-      if (!make_box(0.3_q32, 0.3_q32, &box).ok) return Status{StatusCode::invalid_argument, "arena crate box"};
+      if (!make_box(0.2_q32, 0.2_q32, &box).ok) return Status{StatusCode::invalid_argument, "arena crate box"};
       const Result<ShapeId> s = create_polygon_shape(b.value, default_shape_def(), box);
       if (!s.ok()) return s.status;
     }
