@@ -8,6 +8,11 @@
 // at most input_delay + 1 ticks ahead of its state, so every tick anyone can
 // legitimately send lies within 2 · (30 + 30) + 2 ticks of the confirmed tick;
 // remote inputs further ahead than k_accept_ahead are refused.
+//
+// Redundancy: each input packet repeats the sender's inputs from the oldest
+// tick the receiver has not acknowledged (≤ 32 per packet), and the confirmed
+// hashes likewise, so any loss pattern is repaired by the next packets that
+// get through, oldest first.
 #include "replay/session.h"
 
 #include <algorithm>
@@ -465,11 +470,13 @@ void Session::send_packets() {
     p.input_bytes = static_cast<uint8_t>(config_.input_bytes);
     p.first_input_tick = 0;
     if (!is_spectator()) {
-      uint64_t first = std::max<uint64_t>(input_ack_from_[q] + 1, config_.input_delay + 1);
-      if (last_local_tick_ >= k_packet_max_inputs) first = std::max<uint64_t>(first, last_local_tick_ - k_packet_max_inputs + 1);
+      // Oldest unacknowledged first, so a receiver behind by more than one
+      // packet's worth still fills its gap (the live range fits the ring:
+      // see the file comment).
+      const uint64_t first = std::max<uint64_t>(input_ack_from_[q] + 1, config_.input_delay + 1);
       if (first <= last_local_tick_) {
         p.first_input_tick = static_cast<uint32_t>(first);
-        p.input_count = static_cast<uint8_t>(last_local_tick_ - first + 1);
+        p.input_count = static_cast<uint8_t>(std::min<uint64_t>(last_local_tick_ - first + 1, k_packet_max_inputs));
         for (uint32_t i = 0; i < p.input_count; ++i) {
           std::memcpy(p.inputs.data() + size_t{i} * config_.input_bytes, input_at(config_.local_endpoint, first + i),
                       config_.input_bytes);
@@ -478,11 +485,13 @@ void Session::send_packets() {
     }
     p.hash_count = 0;
     p.first_hash_tick = 0;
+    // Oldest unacknowledged first; hashes that left the ring are skipped (the
+    // receiver sees the gap and skips those checks, counting them).
     uint64_t hfirst = hash_ack_from_[q] + 1;
-    if (confirmed_ >= k_packet_max_hashes) hfirst = std::max<uint64_t>(hfirst, confirmed_ - k_packet_max_hashes + 1);
+    if (hfirst <= confirmed_ && confirmed_ - hfirst >= k_session_ring_ticks - 8) hfirst = confirmed_ - k_packet_max_hashes + 1;
     if (hfirst <= confirmed_) {
       p.first_hash_tick = static_cast<uint32_t>(hfirst);
-      p.hash_count = static_cast<uint8_t>(confirmed_ - hfirst + 1);
+      p.hash_count = static_cast<uint8_t>(std::min<uint64_t>(confirmed_ - hfirst + 1, k_packet_max_hashes));
       for (uint32_t i = 0; i < p.hash_count; ++i) p.hashes[i] = hash_[ring(hfirst + i)];
     }
     send_raw(q, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
@@ -588,6 +597,14 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
       }
     }
   }
+  uint64_t& through = remote_hash_through_[from];
+  if (p.hash_count != 0 && p.first_hash_tick > through + 1) {
+    // The sender acknowledged-through is never ahead of ours, so a gap means
+    // it could not resend those hashes (they left its ring): skip them.
+    stats_.hashes_skipped += p.first_hash_tick - 1 - through;
+    through = p.first_hash_tick - 1;
+    hash_checked_through_[from] = std::max(hash_checked_through_[from], through);
+  }
   for (uint32_t i = 0; i < p.hash_count; ++i) {
     const uint64_t t = uint64_t{p.first_hash_tick} + i;
     if (t <= hash_checked_through_[from] || t >= hash_checked_through_[from] + k_session_ring_ticks) continue;
@@ -595,7 +612,6 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
     remote_hash_[r] = p.hashes[i];
     remote_hash_tick_[r] = t;
   }
-  uint64_t& through = remote_hash_through_[from];
   while (remote_hash_tick_[size_t{from} * k_session_ring_ticks + ring(through + 1)] == through + 1) ++through;
 }
 

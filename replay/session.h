@@ -163,6 +163,7 @@ struct SessionStats {
   uint64_t packets_stale = 0;       ///< sequence not newer (duplicates, reordering): inputs still used
   uint64_t commands_refused = 0;    ///< engine commands the world refused (replayed identically)
   uint64_t hashes_compared = 0;     ///< remote confirmed hashes checked
+  uint64_t hashes_skipped = 0;      ///< remote hashes never received (the sender's ring had moved on)
   std::string last_rejection;       ///< why the last packet was refused
 };
 

@@ -358,3 +358,30 @@ TEST_CASE("session: config errors name the field and range", "[replay][session]"
   CHECK(s.stop_info().message == "local input has 3 bytes, expected 4");
   (void)destroy_world(w.value);
 }
+
+TEST_CASE("session: a backlog longer than one packet is resent oldest first", "[replay][session]") {
+  // Lockstep with a long input delay: while player 1's packets are lost,
+  // player 1 runs up to 2K + 2 ticks of inputs ahead of what player 0 holds,
+  // more than one packet carries (32); player 0 must still catch up.
+  RigOptions o = lossy(2, SessionMode::lockstep, 61);
+  o.net.loss_per_mille = 0;
+  o.net.duplicate_per_mille = 0;
+  o.config.input_delay = 20;
+  o.config.disconnect_timeout_frames = 0;
+  o.time_sync = false;
+  o.ticks = 40;
+  Rig rig(o);
+  rig.run();
+  rig.net.block_from(1);
+  for (int i = 0; i < 80; ++i) {
+    ++rig.frame;
+    rig.frame_of(0);
+    rig.frame_of(1);
+  }
+  // Player 1's inputs reach tick current + K + 1; player 0 holds them only through its own tick.
+  CHECK(rig.peers[1]->session.current_tick() + o.config.input_delay + 1 > rig.peers[0]->session.current_tick() + 32);
+  rig.net.block_from(UINT32_MAX);
+  rig.options.ticks = 250;
+  rig.run();
+  check_against_reference(rig, reference_hashes(rig.options));
+}
