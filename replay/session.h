@@ -52,9 +52,12 @@
 //
 // ALLOCATION. Rings (inputs, hashes, snapshots) are sized at start(); after
 // the snapshot buffers have grown to the world's size and the command vector
-// to the game's largest tick, a session without recording allocates nothing
-// per tick (the game's commands aside; with recording, each confirmed tick is
-// appended to the in-memory replay).
+// to the game's largest tick, the session's own code allocates nothing per
+// tick without recording (with recording, each confirmed tick is appended to
+// the in-memory replay). Measured with a counting operator new (2 peers,
+// arena, 300 frames): the allocations that remain come from applying the
+// engine commands (body_apply_force and its handle check build strings even
+// on success, physics/) and from world_restore during rollbacks.
 //
 // ORDER. Everything the simulation sees is ordered by data: inputs by
 // (tick, player), commands in the order the callback produced them. Packet
