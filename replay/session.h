@@ -57,7 +57,8 @@
 // the in-memory replay). Measured with a counting operator new (2 peers,
 // arena, 300 frames): the allocations that remain come from applying the
 // engine commands (body_apply_force and its handle check build strings even
-// on success, physics/) and from world_restore during rollbacks.
+// on success, physics/), in proportion to the ticks simulated, re-simulated
+// ones included.
 //
 // ORDER. Everything the simulation sees is ordered by data: inputs by
 // (tick, player), commands in the order the callback produced them. Packet
