@@ -24,7 +24,7 @@ group=${1:-all}
 # Toolchain basics (on a fresh machine already; checked so a bare one also works).
 base=(build-essential cmake clang git ninja-build pkg-config)
 # Libraries the library, the command line and its demo use.
-libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
+libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev libenet-dev)
 # The C API's binding tests (capi/tests): Python runs bindings/python (ctypes,
 # standard library only), mcs + mono compile and run bindings/csharp.
 bindings=(python3 mono-mcs mono-runtime)

@@ -7,6 +7,7 @@
 //   cmd_replay.cpp   record, replay, verify, diff, synctest (replay/)
 //   cmd_bench.cpp    bench                       (tools/bench scenes and peers)
 //   cmd_state.cpp    state                       (bodies at one tick, exact)
+//   cmd_session.cpp  session, netplay, session-bench (replay/session.h over tools/net)
 // Exit codes: 0 success, 1 the check failed (verify mismatch, diff found a
 // difference), 2 bad usage or bad input (missing file, malformed scene).
 #pragma once
@@ -42,5 +43,7 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
 void register_bench_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 /// Adds state to `app` (cmd_state.cpp).
 void register_state_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
+/// Adds session, netplay and session-bench to `app` (cmd_session.cpp).
+void register_session_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands);
 
 }  // namespace tandem::cli

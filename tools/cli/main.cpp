@@ -331,6 +331,7 @@ int main(int argc, char** argv) {
   tandem::cli::register_replay_commands(app, options, &commands);
   tandem::cli::register_bench_commands(app, options, &commands);
   tandem::cli::register_state_commands(app, options, &commands);
+  tandem::cli::register_session_commands(app, options, &commands);
 
   if (argc > 1 && argv[1][0] != '-') {  // CLI11 alone would only say "A subcommand is required"
     const std::string name = argv[1];
