@@ -26,7 +26,7 @@ base=(build-essential cmake clang git ninja-build pkg-config)
 # Libraries the library, the command line and its demo use.
 libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev)
 # Only for scripts/test.sh: cross builds and tools/bench.
-extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev)
+extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user valgrind libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev)
 # Cross rows of scripts/test.sh beyond i686/s390x (golden chains only).
 ci_cross=(g++-aarch64-linux-gnu wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32
   libclang-rt-14-dev-wasm32 lld-14 llvm-14 nodejs)
