@@ -235,7 +235,6 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     context->overflow_constraint_count = colour_start[k_contact_colour_count + 1] - colour_start[k_contact_colour_count];
   }
 
-  const BodyState dummy{};
   int32_t n = 0;
   for (size_t ci = 0; ci < contacts.size(); ++ci) {
     const Contact& c = contacts[ci];
@@ -267,12 +266,12 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cc.inv_inertia_b = p.inv_inertia;
       dv_b = p.delta_linear_velocity;
     }
-    cc.kick = dot(dv_b - dv_a, cc.normal);
+    cc.kick = fast::dot(fast::sub(dv_b, dv_a), cc.normal);
     const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
     cc.softness = rigid_side ? context->static_softness : context->contact_softness;
 
-    const BodyState& state_a = ia >= 0 ? context->states[ia] : dummy;
-    const BodyState& state_b = ib >= 0 ? context->states[ib] : dummy;
+    const Rot rotation_a = ia >= 0 ? context->states[ia].rotation : Rot{};
+    const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
     const Vec2 n_vec = cc.normal;
     const Vec2 t_vec = right_perp(n_vec);
     const Vec2 com_offset_a = sim_a.center - sim_a.transform.p;
@@ -288,12 +287,15 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       ContactConstraintPoint& cp = cc.points[j];
       const Vec2 anchor_a = fast::sub(mp.anchor_a, com_offset_a);
       const Vec2 anchor_b = fast::sub(mp.anchor_b, com_offset_b);
-      cp.local_a = ia >= 0 ? fast::inv_rotate(state_a.rotation, anchor_a) : sim_a.center + anchor_a;
-      cp.local_b = ib >= 0 ? fast::inv_rotate(state_b.rotation, anchor_b) : sim_b.center + anchor_b;
-      const Vec2 d0 = fast::add(fast::sub(state_b.center, state_a.center),
-                                fast::sub(fast::rotate(state_b.rotation, cp.local_b),
-                                          fast::rotate(state_a.rotation, cp.local_a)));
-      cp.adjusted_separation = fast::sub(mp.separation, fast::dot(d0, n_vec));
+      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : sim_a.center + anchor_a;
+      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : sim_b.center + anchor_b;
+      // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
+      // plus this. At the start of the step the anchors close exactly
+      // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
+      // the rounding of R·(Rᵀ·anchor), a few raw units: the manifold's
+      // separation is taken as it is instead of paying four rotations to
+      // cancel that rounding.
+      cp.adjusted_separation = mp.separation;
       const Q32 rn_a = fast::cross(anchor_a, n_vec), rn_b = fast::cross(anchor_b, n_vec);
       const Q32 rt_a = fast::cross(anchor_a, t_vec), rt_b = fast::cross(anchor_b, t_vec);
       cp.angular_n_a = cc.inv_inertia_a * rn_a;

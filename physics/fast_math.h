@@ -81,6 +81,25 @@ inline Transform inv_mul_transforms(Transform a, Transform b) {
 /// a + s·b, the product rounded once (vec2.h's mul_add).
 inline Vec2 mul_add(Vec2 a, Q32 s, Vec2 b) { return {add(a.x, mul(s, b.x)), add(a.y, mul(s, b.y))}; }
 
+/// a + t·(b − a) (vec2.h's lerp).
+inline Vec2 lerp(Vec2 a, Vec2 b, Q32 t) { return fast::mul_add(a, t, fast::sub(b, a)); }
+
+/// a / b rounded to nearest, ties away from zero: the same bits as Q32
+/// division. When |a| < 2^-1 (raw < 2^31) and b ≠ 0 the shifted dividend
+/// fits 63 bits and one 64-bit division does it; otherwise the checked
+/// division.
+inline Q32 div(Q32 a, Q32 b) {
+  const uint64_t ua = detail::magnitude(a.raw), ub = detail::magnitude(b.raw);
+  if (ua >= (uint64_t{1} << 31) || ub == 0) return a / b;
+  const uint64_t n = ua << 32;
+  uint64_t q = n / ub;
+  const uint64_t rem = n - q * ub;
+  if (rem >= ub - rem) ++q;
+  if (q > static_cast<uint64_t>(INT64_MAX)) return a / b;  // only for ub = 1 (saturates there)
+  const int64_t m = static_cast<int64_t>(q);
+  return Q32::from_raw((a.raw < 0) != (b.raw < 0) ? -m : m);
+}
+
 /// 1/k for k > 0, rounded to nearest (ties away from zero): the same bits as
 /// Q32::one() / k. For k ≥ 1 (raw ≥ 2^32) the quotient 2^64/raw fits 32 bits
 /// and is formed with two 64-bit divisions; smaller k take the checked

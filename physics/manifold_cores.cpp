@@ -103,26 +103,29 @@ int32_t incident_edge_at_vertex(const Core& inc, int32_t vertex, Vec2 normal) {
 }
 
 
-/// Clips incident edge `i` of `inc` against the side planes of reference edge
-/// `r` of `ref` (both cores in A's frame) and adds the points. `ref_is_b`:
-/// the reference belongs to shape B (normal and ids are flipped to A→B).
-void clip(const Core& ref, int32_t r, const Core& inc, int32_t i, bool ref_is_b, Outside outside,
-          LocalManifold* m) {
-  const int32_t r2i = next_index(r, ref.count);
-  const int32_t i2i = next_index(i, inc.count);
-  const Vec2 n = ref.normals[sz(r)];
-  const Vec2 r1 = ref.vertices[sz(r)];
-  const Vec2 r2 = ref.vertices[sz(r2i)];
-  const Vec2 i1 = inc.vertices[sz(i)];
-  const Vec2 i2 = inc.vertices[sz(i2i)];
+namespace {
 
-  // Tangent coordinates from r1 along the reference edge; the incident edge
-  // runs the other way (i1 upper, i2 lower) when the edges face each other.
-  const Vec2 t = left_perp(n);
-  const Q32 upper1 = fast::dot(r2 - r1, t);
-  const Q32 s1 = fast::dot(i1 - r1, t);
-  const Q32 s2 = fast::dot(i2 - r1, t);
-  const Q32 span = s1 - s2;
+/// Tangent coordinates from r1 along the reference edge: the reference edge
+/// ends at upper1, the incident ends are at s1 (i1) and s2 (i2); the
+/// incident edge runs the other way (i1 upper, i2 lower) when the edges face
+/// each other.
+struct Projected {
+  Q32 upper1, s1, s2;
+};
+
+Projected project(const ClipEdges& e) {
+  const Vec2 t = left_perp(e.normal);
+  return {fast::dot(fast::sub(e.r2, e.r1), t), fast::dot(fast::sub(e.i1, e.r1), t),
+          fast::dot(fast::sub(e.i2, e.r1), t)};
+}
+
+void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outside outside, LocalManifold* m) {
+  const Vec2 n = e.normal;
+  const Vec2 r1 = e.r1;
+  const Vec2 i1 = e.i1;
+  const Vec2 i2 = e.i2;
+  const Q32 upper1 = pr.upper1, s1 = pr.s1, s2 = pr.s2;
+  const Q32 span = fast::sub(s1, s2);
 
   struct Clipped {
     Vec2 p;
@@ -133,32 +136,55 @@ void clip(const Core& ref, int32_t r, const Core& inc, int32_t i, bool ref_is_b,
   int32_t count = 0;
   if (outside == Outside::nothing && (max(s1, s2) < Q32::zero() || min(s1, s2) > upper1)) return;
   if (span > k_clip_span_epsilon && s1 <= Q32::zero()) {
-    pts[0] = {i1, r, i};  // incident edge wholly before r1 (or ending on it): its nearest end
+    pts[0] = {i1, e.r, e.i};  // incident edge wholly before r1 (or ending on it): its nearest end
     count = 1;
   } else if (span > k_clip_span_epsilon && s2 >= upper1) {
-    pts[0] = {i2, r2i, i2i};  // wholly past r2
+    pts[0] = {i2, e.r2i, e.i2i};  // wholly past r2
     count = 1;
   } else {
     Vec2 lower = i2;
     Vec2 upper = i1;
     if (span > k_clip_span_epsilon) {
-      if (s2 < Q32::zero()) lower = lerp(i2, i1, (Q32::zero() - s2) / span);
-      if (s1 > upper1) upper = lerp(i2, i1, (upper1 - s2) / span);
+      if (s2 < Q32::zero()) lower = fast::lerp(i2, i1, fast::div(fast::sub(Q32::zero(), s2), span));
+      if (s1 > upper1) upper = fast::lerp(i2, i1, fast::div(fast::sub(upper1, s2), span));
     }
-    pts[0] = {lower, r, i2i};
-    pts[1] = {upper, r2i, i};
+    pts[0] = {lower, e.r, e.i2i};
+    pts[1] = {upper, e.r2i, e.i};
     count = 2;
   }
 
-  const Q32 radius = ref.radius + inc.radius;
+  const Q32 radius = fast::add(e.ref_radius, e.inc_radius);
   m->normal = ref_is_b ? -n : n;
   for (int32_t k = 0; k < count; ++k) {
     const Clipped& c = pts[sz(k)];
-    const Q32 s = fast::dot(c.p - r1, n);  // core separation along the reference normal
-    const Vec2 mid = fast::mul_add(c.p, (ref.radius - inc.radius - s) / 2, n);
+    const Q32 s = fast::dot(fast::sub(c.p, r1), n);  // core separation along the reference normal
+    const Vec2 mid = fast::mul_add(c.p, fast::sub(fast::sub(e.ref_radius, e.inc_radius), s) / 2, n);
     const uint16_t id = ref_is_b ? make_feature_id(c.inc_vertex, c.ref_vertex) : make_feature_id(c.ref_vertex, c.inc_vertex);
-    add_point(m, mid, s - radius, id);
+    add_point(m, mid, fast::sub(s, radius), id);
   }
+}
+
+}  // namespace
+
+void clip_edges(const ClipEdges& e, bool ref_is_b, Outside outside, LocalManifold* m) {
+  clip_projected(e, project(e), ref_is_b, outside, m);
+}
+
+void clip(const Core& ref, int32_t r, const Core& inc, int32_t i, bool ref_is_b, Outside outside,
+          LocalManifold* m) {
+  ClipEdges e;
+  e.r = r;
+  e.r2i = next_index(r, ref.count);
+  e.i = i;
+  e.i2i = next_index(i, inc.count);
+  e.normal = ref.normals[sz(r)];
+  e.r1 = ref.vertices[sz(e.r)];
+  e.r2 = ref.vertices[sz(e.r2i)];
+  e.i1 = inc.vertices[sz(e.i)];
+  e.i2 = inc.vertices[sz(e.i2i)];
+  e.ref_radius = ref.radius;
+  e.inc_radius = inc.radius;
+  clip_edges(e, ref_is_b, outside, m);
 }
 
 namespace {
@@ -294,6 +320,85 @@ Manifold collide_core_pair(const Core& a, Transform xf_a, const Core& b_local, T
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------
+// Persistent polygon pairs: re-clip last step's features
+// ---------------------------------------------------------------------------
+
+namespace manifold_detail {
+
+bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transform xf_b, const Manifold& previous,
+                     Manifold* out) {
+  // Which edges clipped last step, from the two feature ids alone (clip()
+  // writes (r, i+1) and (r+1, i) with A as reference, (i+1, r) and (i, r+1)
+  // with B; for polygons of 3 or more vertices the two patterns exclude each
+  // other).
+  if (previous.point_count != 2) return false;
+  const int32_t count_a = a.count, count_b = b.count;
+  if (count_a < 3 || count_b < 3 || count_a > k_max_polygon_vertices || count_b > k_max_polygon_vertices) return false;
+  const int32_t a0 = previous.points[0].id >> 8, b0 = previous.points[0].id & 0xFF;
+  const int32_t a1 = previous.points[1].id >> 8, b1 = previous.points[1].id & 0xFF;
+  if (a0 >= count_a || a1 >= count_a || b0 >= count_b || b1 >= count_b) return false;
+  bool ref_is_b;
+  if (a1 == next_index(a0, count_a) && b0 == next_index(b1, count_b)) {
+    ref_is_b = false;
+  } else if (b1 == next_index(b0, count_b) && a0 == next_index(a1, count_a)) {
+    ref_is_b = true;
+  } else {
+    return false;
+  }
+
+  const Transform rel = fast::inv_mul_transforms(xf_a, xf_b);  // B's frame → A's frame
+  ClipEdges e;
+  if (!ref_is_b) {
+    e.r = a0;
+    e.r2i = a1;
+    e.i = b1;
+    e.i2i = b0;
+    e.normal = a.normals[sz(e.r)];
+    e.r1 = a.vertices[sz(e.r)];
+    e.r2 = a.vertices[sz(e.r2i)];
+    e.i1 = fast::transform_point(rel, b.vertices[sz(e.i)]);
+    e.i2 = fast::transform_point(rel, b.vertices[sz(e.i2i)]);
+    e.ref_radius = a.radius;
+    e.inc_radius = b.radius;
+  } else {
+    e.r = b0;
+    e.r2i = b1;
+    e.i = a1;
+    e.i2i = a0;
+    e.normal = fast::rotate(rel.q, b.normals[sz(e.r)]);
+    e.r1 = fast::transform_point(rel, b.vertices[sz(e.r)]);
+    e.r2 = fast::transform_point(rel, b.vertices[sz(e.r2i)]);
+    e.i1 = a.vertices[sz(e.i)];
+    e.i2 = a.vertices[sz(e.i2i)];
+    e.ref_radius = b.radius;
+    e.inc_radius = a.radius;
+  }
+
+  // Still facing each other: the incident edge runs against the reference
+  // edge (span > 0) and turns from it by at most atan(k_reclip_sin):
+  // |h1 − h2| ≤ k_reclip_sin · span, h the heights over the reference line.
+  const Projected pr = project(e);
+  const Q32 span = fast::sub(pr.s1, pr.s2);
+  if (span <= k_clip_span_epsilon) return false;
+  const Q32 h1 = fast::dot(fast::sub(e.i1, e.r1), e.normal);
+  const Q32 h2 = fast::dot(fast::sub(e.i2, e.r1), e.normal);
+  if (abs(fast::sub(h1, h2)) > fast::mul(k_reclip_sin, span)) return false;
+
+  // Still overlapping along the reference edge by a clear margin (not a
+  // corner contact), and both clipped points inside the margin.
+  LocalManifold lm;
+  clip_projected(e, pr, ref_is_b, Outside::nearest_end, &lm);
+  if (lm.count != 2) return false;
+  const Q32 overlap = fast::sub(min(pr.s1, pr.upper1), max(pr.s2, Q32::zero()));
+  const Q32 deepest = min(min(h1, h2), Q32::zero());
+  if (overlap <= fast::sub(k_reclip_min_overlap, deepest * 4)) return false;
+  *out = to_world(lm, xf_a, xf_b);
+  return true;
+}
+
+}  // namespace manifold_detail
 
 Manifold collide_capsules(const Capsule& a, Transform xf_a, const Capsule& b, Transform xf_b) {
   return collide_core_pair(core_from_segment(a.center1, a.center2, a.radius), xf_a,

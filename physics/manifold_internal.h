@@ -120,10 +120,44 @@ enum class Outside {
   nothing,      // no points (chain segments: that region belongs to a neighbour)
 };
 
+/// A reference edge r1→r2 (vertex indices r, r2i; outward unit normal) and
+/// an incident edge i1→i2 (indices i, i2i), all in A's frame, with the two
+/// cores' rounding radii.
+struct ClipEdges {
+  Vec2 normal;
+  Vec2 r1, r2, i1, i2;
+  Q32 ref_radius, inc_radius;
+  int32_t r = 0, r2i = 0, i = 0, i2i = 0;
+};
+/// Clips the incident edge against the reference edge's side planes and adds
+/// the points (see clip).
+void clip_edges(const ClipEdges& e, bool ref_is_b, Outside outside, LocalManifold* m);
+
 /// Clips incident edge `i` of `inc` against the side planes of reference edge
 /// `r` of `ref` (both cores in A's frame) and adds the points. `ref_is_b`:
 /// the reference belongs to shape B (normal and ids are flipped to A→B).
 void clip(const Core& ref, int32_t r, const Core& inc, int32_t i, bool ref_is_b, Outside outside, LocalManifold* m);
+
+/// Re-clip of a persistent polygon pair (the reuse across steps): the
+/// largest |tan| of the angle between the reference edge and the reversed
+/// incident edge (dimensionless; atan 0.05 ≈ 2.9°), and the smallest
+/// overlap of the two edges along the reference edge (m), to which four
+/// times the deepest penetration is added.
+inline constexpr Q32 k_reclip_sin = 0.05_q32;
+inline constexpr Q32 k_reclip_min_overlap = Q32::from_raw(k_linear_slop.raw * 2);
+
+/// Two polygons that touched last step with `previous` (their manifold then):
+/// when its two points came from clipping one reference edge against one
+/// incident edge (decoded from the feature ids) and those edges still face
+/// each other (within atan k_reclip_sin of anti-parallel), still overlap along the
+/// reference edge (by more than k_reclip_min_overlap plus four times the
+/// penetration) and still give two points inside the margin, writes the
+/// re-clipped manifold to *out and returns true; otherwise false (the caller
+/// runs the full SAT). Uses only the previous manifold's point count and ids
+/// and the current poses, so a world restored from a snapshot decides the
+/// same way.
+bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transform xf_b, const Manifold& previous,
+                     Manifold* out);
 
 /// The closest features of two disjoint cores.
 struct ClosestFeatures {
