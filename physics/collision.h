@@ -423,4 +423,15 @@ Manifold flip_manifold(const Manifold& m);
 /// geometry does not collide with static geometry).
 Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b);
 
+/// As collide(), for a pair that already touched with manifold `previous`
+/// (the contact's manifold from the last update, in the canonical state):
+/// two polygons whose previous manifold clipped one edge against another
+/// re-clip those two edges at the new poses while they still face each other
+/// (manifold_internal.h states the thresholds), skipping the separating-axis
+/// search; anything else is collide(). Depends only on `previous`'s point
+/// count and feature ids and the current poses, so a restored world decides
+/// the same way.
+Manifold collide_persistent(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b,
+                            const Manifold& previous);
+
 }  // namespace tandem

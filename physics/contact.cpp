@@ -37,6 +37,11 @@ namespace tandem {
 uint64_t contact_key(const Contact& contact) { return shape_pair_key(contact.shape_a, contact.shape_b); }
 
 Q32 mix_friction(Q32 a, Q32 b) {
+  // Equal frictions above 1/2 mix to themselves, bit for bit, without the
+  // root: with x = a.raw > 2^31, a·a rounds to r where |r·2^32 − x²| ≤ 2^31,
+  // so √(r·2^32) lies within 2^31/(2x) < 1/2 raw unit of x and the correctly
+  // rounded root is x.
+  if (a == b && a.raw > (int64_t{1} << 31)) return a;
   // a, b ≤ k_max_friction = 100: the product ≤ 1e4, no saturation.
   return sqrt(a * b);
 }
@@ -54,7 +59,11 @@ void update_manifold(const World& world, Contact* c, const Contact* old) {
   const Shape& shape_b = world.shapes[sb];
   const Transform xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
   const Transform xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
-  c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
+  if (old != nullptr && (old->flags & k_contact_touching) != 0) {
+    c->manifold = collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, old->manifold);
+  } else {
+    c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
+  }
   c->friction = mix_friction(shape_a.friction, shape_b.friction);
   c->restitution = mix_restitution(shape_a.restitution, shape_b.restitution);
   c->normal_impulse = {};

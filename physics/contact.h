@@ -6,8 +6,10 @@
 // order in which contacts are updated, solved and (later) reported is a
 // function of the shape ids alone (contact.cpp spells out the chain).
 //
-// Each step update_contacts() recomputes every contact's manifold with
-// collide() from the start-of-step poses and carries the previous step's
+// Each step update_contacts() recomputes every contact's manifold from the
+// start-of-step poses — with collide_persistent() for a contact that was
+// touching (a polygon pair re-clips last step's edges while they still face
+// each other, manifold.cpp), collide() otherwise — and carries the previous step's
 // impulses over to the new points whose feature id matches an old point's
 // (warm starting). A contact is "touching" when its manifold has points
 // (which includes speculative points up to k_speculative_distance apart).

@@ -62,6 +62,7 @@
 
 #include <bit>
 
+#include "physics/fast_math.h"
 #include "physics/world.h"
 
 namespace tandem {
@@ -234,7 +235,6 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     context->overflow_constraint_count = colour_start[k_contact_colour_count + 1] - colour_start[k_contact_colour_count];
   }
 
-  const BodyState dummy{};
   int32_t n = 0;
   for (size_t ci = 0; ci < contacts.size(); ++ci) {
     const Contact& c = contacts[ci];
@@ -266,43 +266,51 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cc.inv_inertia_b = p.inv_inertia;
       dv_b = p.delta_linear_velocity;
     }
-    cc.kick = dot(dv_b - dv_a, cc.normal);
+    cc.kick = fast::dot(fast::sub(dv_b, dv_a), cc.normal);
     const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
     cc.softness = rigid_side ? context->static_softness : context->contact_softness;
 
-    const BodyState& state_a = ia >= 0 ? context->states[ia] : dummy;
-    const BodyState& state_b = ib >= 0 ? context->states[ib] : dummy;
+    const Rot rotation_a = ia >= 0 ? context->states[ia].rotation : Rot{};
+    const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
     const Vec2 n_vec = cc.normal;
     const Vec2 t_vec = right_perp(n_vec);
     const Vec2 com_offset_a = sim_a.center - sim_a.transform.p;
     const Vec2 com_offset_b = sim_b.center - sim_b.transform.p;
+    const Q32 inv_mass_sum = cc.inv_mass_a + cc.inv_mass_b;
+    // Geometry (anchors, crosses, the start-of-step gap) uses fast_math.h:
+    // anchors lie within a shape's reach of its body (< 2^21 m) and n, t and
+    // the rotations are unit, so nothing saturates and the bits are the
+    // checked operators'. Mass terms keep the checked operators (a tiny
+    // body's inverse inertia times a long arm is bounded only by limits.h).
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       ContactConstraintPoint& cp = cc.points[j];
-      const Vec2 anchor_a = mp.anchor_a - com_offset_a;
-      const Vec2 anchor_b = mp.anchor_b - com_offset_b;
-      cp.local_a = ia >= 0 ? inv_rotate(state_a.rotation, anchor_a) : sim_a.center + anchor_a;
-      cp.local_b = ib >= 0 ? inv_rotate(state_b.rotation, anchor_b) : sim_b.center + anchor_b;
-      const Vec2 d0 = (state_b.center - state_a.center) +
-                      (rotate(state_b.rotation, cp.local_b) - rotate(state_a.rotation, cp.local_a));
-      cp.adjusted_separation = mp.separation - dot(d0, n_vec);
-      const Q32 rn_a = cross(anchor_a, n_vec), rn_b = cross(anchor_b, n_vec);
-      const Q32 k_normal = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rn_a * rn_a +
-                           cc.inv_inertia_b * rn_b * rn_b;
-      cp.normal_mass = k_normal > Q32::zero() ? Q32::one() / k_normal : Q32::zero();
-      cp.soft_normal_mass = cp.normal_mass * cc.softness.mass_scale;
-      const Q32 rt_a = cross(anchor_a, t_vec), rt_b = cross(anchor_b, t_vec);
-      const Q32 k_tangent = cc.inv_mass_a + cc.inv_mass_b + cc.inv_inertia_a * rt_a * rt_a +
-                            cc.inv_inertia_b * rt_b * rt_b;
-      cp.tangent_mass = k_tangent > Q32::zero() ? Q32::one() / k_tangent : Q32::zero();
-      cp.rn_a = rn_a;
-      cp.rn_b = rn_b;
-      cp.rt_a = rt_a;
-      cp.rt_b = rt_b;
+      const Vec2 anchor_a = fast::sub(mp.anchor_a, com_offset_a);
+      const Vec2 anchor_b = fast::sub(mp.anchor_b, com_offset_b);
+      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : sim_a.center + anchor_a;
+      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : sim_b.center + anchor_b;
+      // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
+      // plus this. At the start of the step the anchors close exactly
+      // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
+      // the rounding of R·(Rᵀ·anchor), a few raw units: the manifold's
+      // separation is taken as it is instead of paying four rotations to
+      // cancel that rounding.
+      cp.adjusted_separation = mp.separation;
+      const Q32 rn_a = fast::cross(anchor_a, n_vec), rn_b = fast::cross(anchor_b, n_vec);
+      const Q32 rt_a = fast::cross(anchor_a, t_vec), rt_b = fast::cross(anchor_b, t_vec);
       cp.angular_n_a = cc.inv_inertia_a * rn_a;
       cp.angular_n_b = cc.inv_inertia_b * rn_b;
       cp.angular_t_a = cc.inv_inertia_a * rt_a;
       cp.angular_t_b = cc.inv_inertia_b * rt_b;
+      const Q32 k_normal = inv_mass_sum + cp.angular_n_a * rn_a + cp.angular_n_b * rn_b;
+      cp.normal_mass = k_normal > Q32::zero() ? fast::reciprocal(k_normal) : Q32::zero();
+      cp.soft_normal_mass = cp.normal_mass * cc.softness.mass_scale;
+      const Q32 k_tangent = inv_mass_sum + cp.angular_t_a * rt_a + cp.angular_t_b * rt_b;
+      cp.tangent_mass = k_tangent > Q32::zero() ? fast::reciprocal(k_tangent) : Q32::zero();
+      cp.rn_a = rn_a;
+      cp.rn_b = rn_b;
+      cp.rt_a = rt_a;
+      cp.rt_b = rt_b;
       cp.normal_impulse = c.normal_impulse[static_cast<size_t>(j)];
       cp.tangent_impulse = c.tangent_impulse[static_cast<size_t>(j)];
       cp.bounce_sub_step = -1;

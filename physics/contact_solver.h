@@ -54,7 +54,7 @@ struct ContactConstraintPoint {
   Q32 angular_t_b;            ///< I_B⁻¹ · (r_B × t)
   Vec2 local_a;               ///< anchor in A's body frame (or the world point when A is not simulated), m
   Vec2 local_b;               ///< the same for B, m
-  Q32 adjusted_separation;    ///< separation minus the start-of-step anchor gap along the normal, m
+  Q32 adjusted_separation;    ///< the manifold separation (the anchors close exactly at the start of the step), m
   Q32 normal_impulse;         ///< accumulated this sub-step, N·s
   Q32 tangent_impulse;        ///< accumulated this sub-step, N·s
   Q32 normal_mass;            ///< 1/k_normal, kg (0 when k is 0)

@@ -29,8 +29,8 @@ libs=(catch2 libcli11-dev nlohmann-json3-dev libxxhash-dev libcairo2-dev libenet
 # standard library only), mcs + mono compile and run bindings/csharp.
 bindings=(python3 mono-mcs mono-runtime)
 # Only for scripts/test.sh: cross builds and tools/bench.
-extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user libbenchmark-dev libfixmath-dev libbox2d-dev libchipmunk-dev
-  libclang-rt-14-dev)  # libclang-rt-14-dev: libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
+extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user valgrind libbenchmark-dev libfixmath-dev libbox2d-dev
+  libchipmunk-dev libclang-rt-14-dev)  # libclang-rt-14-dev: libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
 # Cross rows of scripts/test.sh beyond i686/s390x (golden chains only).
 ci_cross=(g++-aarch64-linux-gnu wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32
   libclang-rt-14-dev-wasm32 lld-14 llvm-14 nodejs)

@@ -790,6 +790,66 @@ TEST_CASE("feature ids are stable under small motions", "[physics][manifold]") {
   }
 }
 
+TEST_CASE("persistent polygon pairs re-clip last step's edges, or fall back to the full search", "[physics][manifold]") {
+  // collide_persistent() re-clips the two edges named by the previous
+  // manifold's ids. Where the full search would pick the same edges (small
+  // motions of a box resting on a wide ground, either shape the reference),
+  // the result is the full search's, bit for bit; beyond the thresholds
+  // (turned past atan 0.05, slid to a corner, previous manifold with one
+  // point, not touching) it is collide() itself.
+  const Polygon ground = box(5, 0.5);
+  const Polygon b = box(0.5, 0.5);
+  struct Motion {
+    double dx, dy, deg;
+  };
+  const std::vector<Motion> small = {{0, 0, 0}, {0.003, 0, 0}, {-0.2, 0.004, 0}, {0, -0.003, 0.5},
+                                     {0.1, 0.002, -1.0}, {0, 0.012, 0}, {0.3, -0.004, 1.5}};
+  for (const bool box_is_a : {false, true}) {
+    // Ground as A (its top face is the reference), or the box as A turned
+    // by 0.5° so the ground's face is the better axis (B the reference).
+    const ShapeGeometry ga = box_is_a ? geo(b) : geo(ground);
+    const ShapeGeometry gb = box_is_a ? geo(ground) : geo(b);
+    const double turn = box_is_a ? 0.5 : 0.0;
+    const auto poses = [&](const Motion& mo, Transform* xa, Transform* xb) {
+      const Transform ground_pose = pose(0, 0);
+      const Transform box_pose = pose(0.2 + mo.dx, 0.99 + mo.dy, turn + mo.deg);
+      *xa = box_is_a ? box_pose : ground_pose;
+      *xb = box_is_a ? ground_pose : box_pose;
+    };
+    Transform xa, xb;
+    poses({0, 0, 0}, &xa, &xb);
+    const Manifold previous = collide(ga, xa, gb, xb);
+    REQUIRE(previous.point_count == 2);
+    for (const Motion& mo : small) {
+      INFO("box is A " << box_is_a << " motion " << mo.dx << " " << mo.dy << " " << mo.deg);
+      poses(mo, &xa, &xb);
+      const Manifold full = collide(ga, xa, gb, xb);
+      const Manifold again = collide_persistent(ga, xa, gb, xb, previous);
+      REQUIRE(again.point_count == 2);
+      CHECK(identical(again, full));
+      CHECK(sorted_ids(again) == sorted_ids(previous));
+      check_invariants(again, xa, xb);
+    }
+    // Beyond the thresholds: exactly collide().
+    const std::vector<Motion> beyond = {{0, 0, 4.0}, {0, 0, -8.0}, {5.28, 0, 0}, {-5.69, 0, 0}, {0, 0.05, 0}};
+    for (const Motion& mo : beyond) {
+      INFO("beyond: box is A " << box_is_a << " motion " << mo.dx << " " << mo.dy << " " << mo.deg);
+      poses(mo, &xa, &xb);
+      CHECK(identical(collide_persistent(ga, xa, gb, xb, previous), collide(ga, xa, gb, xb)));
+    }
+    Manifold one = previous;
+    one.point_count = 1;
+    poses(small[2], &xa, &xb);
+    CHECK(identical(collide_persistent(ga, xa, gb, xb, one), collide(ga, xa, gb, xb)));
+  }
+  // Other shape pairs always take collide().
+  const Capsule cap{v2(-0.5, 0), v2(0.5, 0), q(0.25)};
+  const Manifold cap_previous = collide(geo(ground), pose(0, 0), geo(cap), pose(0.2, 0.74));
+  REQUIRE(cap_previous.point_count == 2);
+  CHECK(identical(collide_persistent(geo(ground), pose(0, 0), geo(cap), pose(0.21, 0.745), cap_previous),
+                  collide(geo(ground), pose(0, 0), geo(cap), pose(0.21, 0.745))));
+}
+
 TEST_CASE("rotation sweeps: no missing contacts, no flipped normals", "[physics][manifold]") {
   const Polygon ground = box(5, 0.5);
   const Polygon b = box(0.5, 0.3);
