@@ -43,7 +43,8 @@ endforeach()
 # Internal headers (the engine's own furniture) must not be installed, and every
 # installed header may include only installed headers.
 foreach(internal physics/world.h physics/arena.h physics/body.h physics/shape.h physics/contact.h
-        physics/contact_solver.h physics/broad_phase.h physics/event_state.h physics/island.h physics/id_pool.h)
+        physics/contact_solver.h physics/broad_phase.h physics/event_state.h physics/joint_state.h physics/island.h
+        physics/id_pool.h)
   if(EXISTS ${prefix}/include/tandem/${internal})
     message(FATAL_ERROR "consumer test: the internal header ${internal} was installed")
   endif()

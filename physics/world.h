@@ -46,7 +46,7 @@
 #include "physics/defs.h"
 #include "physics/id_pool.h"
 #include "physics/island.h"
-#include "physics/joint.h"
+#include "physics/joint_state.h"
 #include "physics/ids.h"
 #include "physics/shape.h"
 #include "physics/tandem.h"

@@ -120,6 +120,9 @@ int main(int argc, char** argv) {
         sh = create_polygon_shape(b.value, sd, box);
         break;
       }
+      case bench::ShapeKind::segment:
+        sh = create_segment_shape(b.value, sd, Segment{{-s.half_width, Q32{}}, {s.half_width, Q32{}}});
+        break;
     }
     if (!sh.ok()) return usage(sh.status.message.c_str());
   }
