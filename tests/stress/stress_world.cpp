@@ -36,6 +36,7 @@
 #include <atomic>
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 
 #include "fixed/fault.h"
 #include "fixed/splitmix64.h"
@@ -93,6 +94,7 @@ struct WorldParams {
   Q32 wall;             // wall thickness, m
   Q32 size_max;         // largest dynamic shape size, m
   Q32 max_speed;        // world max_linear_speed, m/s
+  bool fast = false;    // inputs reach max_speed; otherwise every speed set or added is ≤ k_slow_speed
   Vec2 gravity;         // m/s²
   int32_t sub_steps = 4;
   bool custom_filter = false;
@@ -116,8 +118,9 @@ WorldParams draw_params(uint64_t seed, const StressConfig& config) {
   }
   p.size_max = min(p.half / 12, 800_q32);
   p.max_speed = rng.chance(30) ? k_max_linear_speed : 400_q32;
+  p.fast = rng.chance(40);
   const int64_t g = rng.range(0, 3);
-  p.gravity = g == 0 ? Vec2{} : Vec2{rng.symmetric(2_q32), -rng.between(1_q32, 30_q32)};
+  p.gravity = g == 0 ? Vec2{} : Vec2{rng.symmetric(2_q32), -rng.between(1_q32, p.fast ? 30_q32 : 10_q32)};
   p.sub_steps = static_cast<int32_t>(rng.range(1, 8));
   p.custom_filter = rng.chance(50);
   p.sleep = rng.chance(70);
@@ -129,6 +132,9 @@ WorldParams draw_params(uint64_t seed, const StressConfig& config) {
   return p;
 }
 
+/// Slow worlds: the largest speed an input sets or adds, m/s (per component).
+constexpr Q32 k_slow_speed = 10_q32;
+
 /// Shapes 0…3 (index1 1…4) are the walls: created first, never destroyed.
 bool is_wall(ShapeId s) { return s.index1 >= 1 && s.index1 <= 4; }
 
@@ -139,6 +145,16 @@ bool stress_custom_filter(ShapeId a, ShapeId b, void* /*context*/) {
 }
 
 // --- the driver -----------------------------------------------------------------
+
+/// TANDEM_STRESS_TRACE=<body index>: run 0 prints that body's inputs and, every
+/// tick, its pose and velocity (for reproducing a failure by seed).
+int64_t trace_body() {
+  static const int64_t index = [] {
+    const char* v = std::getenv("TANDEM_STRESS_TRACE");
+    return v != nullptr ? std::strtoll(v, nullptr, 10) : -1;
+  }();
+  return index;
+}
 
 struct Tracked {
   BodyId id;
@@ -176,6 +192,7 @@ class Driver {
 
   WorldId world;
   DriverState s_;
+  bool trace = false;
 
   Status build(BroadPhaseKind kind) {
     WorldDef def = default_world_def();
@@ -207,7 +224,8 @@ class Driver {
   }
 
   /// Containment (see stress_world.h): empty when every checked body is in.
-  std::string check_containment() const {
+  /// *out_chain_body: the body that left carries one-sided chain segments.
+  std::string check_containment(bool* out_chain_body) const {
     const Q32 limit = p_.half + p_.wall / 2;
     for (const Tracked& t : s_.bodies) {
       if (t.kinematic || !body_is_valid(t.id) || body_type(t.id) != BodyType::dynamic_body || !body_is_enabled(t.id))
@@ -215,6 +233,7 @@ class Driver {
       if (!has_solid_shape(t.id)) continue;
       const Vec2 c = body_world_center(t.id) - p_.center;
       if (abs(c.x) > limit || abs(c.y) > limit) {
+        *out_chain_body = has_chain(t.id);
         char text[256];
         std::snprintf(text, sizeof text, "%s left the container: centre of mass (%.4f, %.4f) m from the container centre, "
                       "walls' middle at ±%.4f m; velocity (%.3f, %.3f) m/s",
@@ -244,6 +263,15 @@ class Driver {
 
   void note(const Status& st) {
     if (st.ok()) ++s_.applied; else ++s_.refused;
+  }
+
+  static bool has_chain(BodyId b) {
+    ShapeId shapes[16];
+    const int32_t n = body_shapes(b, shapes, 16);
+    for (int32_t i = 0; i < n && i < 16; ++i) {
+      if (shape_type(shapes[i]) == ShapeType::chain_segment) return true;
+    }
+    return false;
   }
 
   static bool has_solid_shape(BodyId b) {
@@ -455,7 +483,7 @@ class Driver {
     } else {
       bd.position = interior_point(reach);
       const int64_t speed_class = s_.rng.range(0, 99);
-      const Q32 top = speed_class < 80 ? 10_q32 : (speed_class < 95 ? 100_q32 : p_.max_speed);
+      const Q32 top = p_.fast ? (speed_class < 80 ? 10_q32 : (speed_class < 95 ? 100_q32 : p_.max_speed)) : k_slow_speed;
       bd.linear_velocity = Vec2{s_.rng.symmetric(top / 2), s_.rng.symmetric(top / 2)};
       bd.angular_velocity = s_.rng.chance(70) ? s_.rng.symmetric(5_q32) : s_.rng.symmetric(k_max_angular_speed);
       if (s_.rng.chance(20)) bd.linear_damping = s_.rng.between(0_q32, 2_q32);
@@ -491,6 +519,7 @@ class Driver {
 
   Q32 speed_draw() {
     const int64_t c = s_.rng.range(0, 99);
+    if (!p_.fast) return k_slow_speed;
     return c < 80 ? 10_q32 : (c < 95 ? 100_q32 : p_.max_speed);
   }
 
@@ -509,7 +538,8 @@ class Driver {
       return;
     }
     if (op == k_op_gravity) {
-      note(world_set_gravity(world, s_.rng.chance(50) ? p_.gravity : Vec2{s_.rng.symmetric(5_q32), -s_.rng.between(0_q32, 30_q32)}));
+      note(world_set_gravity(world, s_.rng.chance(50) ? p_.gravity
+                                                      : Vec2{s_.rng.symmetric(5_q32), -s_.rng.between(0_q32, p_.fast ? 30_q32 : 10_q32)}));
       return;
     }
     if (op == k_op_joint) {
@@ -519,6 +549,7 @@ class Driver {
     Tracked* t = pick(false);
     if (t == nullptr || !body_is_valid(t->id)) return;
     const BodyId b = t->id;
+    if (trace && static_cast<int64_t>(b.index1) - 1 == trace_body()) std::printf("  input op %d on %s\n", static_cast<int>(op), describe(b).c_str());
     switch (op) {
       case k_op_impulse: {
         const Q32 dv = speed_draw() / 4;
@@ -542,7 +573,8 @@ class Driver {
         break;
       }
       case k_op_axis_velocity: {  // exactly the world's maximum along an axis
-        const Q32 v = s_.rng.chance(50) ? p_.max_speed : -p_.max_speed;
+        const Q32 top = p_.fast ? p_.max_speed : k_slow_speed;
+        const Q32 v = s_.rng.chance(50) ? top : -top;
         note(body_set_linear_velocity(b, s_.rng.chance(50) ? Vec2{v, 0_q32} : Vec2{0_q32, v}));
         break;
       }
@@ -615,6 +647,7 @@ void run_pass(uint64_t seed, const WorldParams& p, const StressConfig& c, const 
   std::snprintf(where, sizeof where, "seed %" PRIu64 " run %d (%s%s)", seed, spec.index, kind_name(spec.kind),
                 spec.restore ? ", snapshot/restore" : "");
   Driver d(p, c, seed);
+  d.trace = spec.reference && trace_body() >= 0;
   if (Status st = d.build(spec.kind); !st.ok()) {
     result->failure = std::string(where) + ": building the world failed: " + st.message;
     if (world_is_valid(d.world)) (void)destroy_world(d.world);
@@ -646,16 +679,26 @@ void run_pass(uint64_t seed, const WorldParams& p, const StressConfig& c, const 
       break;
     }
     const uint64_t h = world_state_hash(d.world);
+    if (d.trace) {
+      for (const Tracked& t : d.s_.bodies) {
+        if (static_cast<int64_t>(t.id.index1) - 1 != trace_body() || !body_is_valid(t.id)) continue;
+        const Vec2 rel = body_world_center(t.id) - p.center;
+        const Vec2 v = body_linear_velocity(t.id);
+        std::printf("tick %d %s: centre (%.5f, %.5f) v (%.4f, %.4f) w %.4f awake %d\n", tick + 1, describe(t.id).c_str(),
+                    rel.x.to_double(), rel.y.to_double(), v.x.to_double(), v.y.to_double(),
+                    body_angular_velocity(t.id).to_double(), body_is_awake(t.id) ? 1 : 0);
+      }
+    }
     if (spec.reference) {
       chain->push_back(h);
-      if ((r.flags & k_step_flag_body_left_bounds) != 0u) {
-        ++result->escapes;
-        result->failure = std::string(where) + " tick " + std::to_string(tick + 1) + ": a body left the world bounds";
-      }
-      const std::string out = d.check_containment();
-      if (!out.empty()) {
-        ++result->escapes;
-        result->failure = std::string(where) + " tick " + std::to_string(tick + 1) + ": " + out;
+      // The first escape is kept; the runs go on, so the other checks still run.
+      bool chain_body = false;
+      std::string out = d.check_containment(&chain_body);
+      if (out.empty() && (r.flags & k_step_flag_body_left_bounds) != 0u) out = "a body left the world bounds";
+      if (!out.empty() && result->escapes == 0) {
+        result->escapes = 1;
+        result->escape_kind = chain_body ? EscapeKind::chain_body : (p.fast ? EscapeKind::fast_world : EscapeKind::slow_world);
+        result->escape = std::string(where) + " tick " + std::to_string(tick + 1) + ": " + out;
       }
     } else if (static_cast<size_t>(tick) >= chain->size() || (*chain)[static_cast<size_t>(tick)] != h) {
       char text[128];
@@ -694,6 +737,9 @@ StressResult run_stress_world(const StressConfig& config) {
   if (config.check_restore && result.ok()) {
     run_pass(config.seed, p, config, RunSpec{p.restore_broad_phase, 4, false, true}, &chain, &result);
   }
+  result.fast = p.fast;
+  if (result.escapes != 0 && result.ok() && (config.fail_on_known_escapes || result.escape_kind == EscapeKind::slow_world))
+    result.failure = result.escape;
   result.faults = g_faults.load();
   if (result.faults != 0 && result.ok()) {
     const char* op = g_first_fault.load();
@@ -704,12 +750,24 @@ StressResult run_stress_world(const StressConfig& config) {
   return result;
 }
 
+const char* escape_kind_name(EscapeKind kind) {
+  switch (kind) {
+    case EscapeKind::none: return "none";
+    case EscapeKind::slow_world: return "slow world";
+    case EscapeKind::fast_world: return "fast world";
+    case EscapeKind::chain_body: return "body with chain segments";
+  }
+  return "?";
+}
+
 std::string describe(uint64_t seed, const StressResult& r) {
   char text[512];
   std::snprintf(text, sizeof text,
-                "seed %" PRIu64 ": %s; container ±%d m; %d bodies created, %d destroyed, %d shapes; %d inputs applied, "
+                "seed %" PRIu64 ": %s%s; %s world, container ±%d m; %d bodies created, %d destroyed, %d shapes; %d inputs applied, "
                 "%d refused; %d steps; final hash %016" PRIx64,
-                seed, r.ok() ? "ok" : r.failure.c_str(), r.container_scale, r.bodies_created, r.bodies_destroyed,
+                seed, r.ok() ? "ok" : r.failure.c_str(),
+                r.ok() && r.escapes != 0 ? (" (known escape, " + std::string(escape_kind_name(r.escape_kind)) + ": " + r.escape + ")").c_str() : "",
+                r.fast ? "fast" : "slow", r.container_scale, r.bodies_created, r.bodies_destroyed,
                 r.shapes_created, r.inputs_applied, r.inputs_refused, r.steps, r.final_hash);
   return text;
 }

@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   uint64_t failed = 0, steps = 0, created = 0, applied = 0, refused = 0;
   int64_t faults = 0, escapes = 0;
+  uint64_t escape_kinds[4] = {0, 0, 0, 0};
   for (uint64_t seed = first; seed < first + worlds; ++seed) {
     if (log != nullptr) { std::fprintf(log, "start seed %" PRIu64 "\n", seed); std::fflush(log); }
     tandem::stress::StressConfig c;
@@ -71,7 +72,8 @@ int main(int argc, char** argv) {
     const std::string line = tandem::stress::describe(seed, r);
     if (log != nullptr) { std::fprintf(log, "%s\n", line.c_str()); std::fflush(log); }
     if (!r.ok()) { ++failed; std::printf("FAIL %s\n", line.c_str()); std::fflush(stdout); }
-    else if (!quiet) { std::printf("%s\n", line.c_str()); std::fflush(stdout); }
+    else if (!quiet || r.escapes != 0) { std::printf("%s%s\n", r.escapes != 0 ? "KNOWN " : "", line.c_str()); std::fflush(stdout); }
+    if (r.escapes != 0) ++escape_kinds[static_cast<int>(r.escape_kind)];
     steps += static_cast<uint64_t>(r.steps);
     created += static_cast<uint64_t>(r.bodies_created);
     applied += static_cast<uint64_t>(r.inputs_applied);
@@ -84,6 +86,8 @@ int main(int argc, char** argv) {
               " steps in all runs; %" PRIu64 " failed, %" PRId64 " faults, %" PRId64 " escapes; %" PRIu64
               " bodies created, %" PRIu64 " inputs applied, %" PRIu64 " refused; %.1f s\n",
               worlds, first, first + worlds - 1, ticks, steps, failed, faults, escapes, created, applied, refused, seconds);
+  std::printf("escapes by kind: slow world %" PRIu64 " (failures), fast world %" PRIu64 " (known issue 1), body with chain "
+              "segments %" PRIu64 " (known issue 2)\n", escape_kinds[1], escape_kinds[2], escape_kinds[3]);
   if (log != nullptr) std::fclose(log);
   return failed == 0 ? 0 : 1;
 }
