@@ -312,8 +312,12 @@ class Driver {
   Filter random_filter() {
     Filter f;
     if (s_.rng.chance(60)) return f;
-    f.category_bits = (s_.rng.next() & 0xFFull) | 1u << s_.rng.range(0, 7);
-    f.mask_bits = (s_.rng.next() & 0xFFull) | 1u << s_.rng.range(0, 7);
+    // One draw per statement: the order of evaluation of operands and of
+    // function arguments is unspecified in C++ (g++ and clang differ).
+    f.category_bits = s_.rng.next() & 0xFFull;
+    f.category_bits |= 1u << s_.rng.range(0, 7);
+    f.mask_bits = s_.rng.next() & 0xFFull;
+    f.mask_bits |= 1u << s_.rng.range(0, 7);
     f.group_index = static_cast<int32_t>(s_.rng.range(-2, 2));
     return f;
   }
@@ -367,13 +371,29 @@ class Driver {
     }
   }
 
-  /// Density giving roughly `target` kg for a shape of `unit_mass` kg at
-  /// density 1 (clamped to the density limit).
-  static Q32 density_for(Q32 target, Q32 unit_mass) {
-    if (unit_mass <= 0_q32) return 1_q32;
-    if (target >= k_max_density * unit_mass) return k_max_density;
-    const Q32 d = target / unit_mass;
+  /// Density giving roughly `target` kg for a shape of `area` m² (clamped to
+  /// the density limit). Division only: the generator itself must never
+  /// raise a fixed-point fault (every fault counted is the engine's).
+  static Q32 density_for(Q32 target, Q32 area) {
+    if (area <= 0_q32) return 1_q32;
+    if (target / k_max_density >= area) return k_max_density;
+    const Q32 d = target / area;
     return d.raw <= 0 ? Q32::from_raw(1) : d;
+  }
+
+  // Areas, m² (approximate for rounded polygons; only the density draw uses
+  // them). compute_*_mass would overflow the inertia of large shapes at
+  // density 1, and that fault would be the test's own.
+  static Q32 circle_area(Q32 r) { return k_pi * r * r; }
+  static Q32 capsule_area(const Capsule& c) { return circle_area(c.radius) + length(c.center2 - c.center1) * c.radius * 2; }
+  static Q32 polygon_area(const Polygon& p) {
+    Q32 twice = 0_q32, perimeter = 0_q32;
+    for (int32_t i = 0; i < p.count; ++i) {
+      const Vec2 a = p.vertices[static_cast<size_t>(i)], b = p.vertices[static_cast<size_t>((i + 1) % p.count)];
+      twice += cross(a - p.centroid, b - p.centroid);
+      perimeter += length(b - a);
+    }
+    return twice / 2 + perimeter * p.radius + circle_area(p.radius);
   }
 
   Vec2 random_offset(Q32 r) {
@@ -398,7 +418,7 @@ class Driver {
       switch (kind) {
         case 0: {
           const Circle c{o, r};
-          d.density = density_for(goal, compute_circle_mass(c, 1_q32).mass);
+          d.density = density_for(goal, circle_area(c.radius));
           Result<ShapeId> s = create_circle_shape(b, d, c);
           st = s.status;
           if (s.ok()) *extent = max(*extent, length(o) + r);
@@ -407,7 +427,7 @@ class Driver {
         case 1: {
           const Vec2 h = random_offset(size);
           const Capsule c{o + h, o - h, r / 2 < k_min_shape_size ? k_min_shape_size : r / 2};
-          d.density = density_for(goal, compute_capsule_mass(c, 1_q32).mass);
+          d.density = density_for(goal, capsule_area(c));
           Result<ShapeId> s = create_capsule_shape(b, d, c);
           st = s.status;
           if (s.ok()) *extent = max(*extent, length(o) + length(h) + c.radius);
@@ -431,7 +451,7 @@ class Driver {
             st = Status{StatusCode::invalid_argument, gs.message};
             break;
           }
-          d.density = density_for(goal, compute_polygon_mass(poly, 1_q32).mass);
+          d.density = density_for(goal, polygon_area(poly));
           Result<ShapeId> s = create_polygon_shape(b, d, poly);
           st = s.status;
           if (s.ok()) *extent = max(*extent, length(o) + size * 2 + rounding);  // hull points: o ± size per axis
@@ -553,15 +573,17 @@ class Driver {
     switch (op) {
       case k_op_impulse: {
         const Q32 dv = speed_draw() / 4;
-        note(body_apply_linear_impulse_to_center(b, Vec2{s_.rng.symmetric(dv), s_.rng.symmetric(dv)} * body_mass(b),
-                                                 s_.rng.chance(50)));
+        const Vec2 j = Vec2{s_.rng.symmetric(dv), s_.rng.symmetric(dv)} * body_mass(b);
+        const bool wake = s_.rng.chance(50);
+        note(body_apply_linear_impulse_to_center(b, j, wake));
         break;
       }
       case k_op_impulse_at: {
         const Q32 dv = speed_draw() / 4;
         const Vec2 point = body_world_center(b) + random_offset(t->extent);
-        note(body_apply_linear_impulse(b, Vec2{s_.rng.symmetric(dv), s_.rng.symmetric(dv)} * body_mass(b), point,
-                                       s_.rng.chance(50)));
+        const Vec2 j = Vec2{s_.rng.symmetric(dv), s_.rng.symmetric(dv)} * body_mass(b);
+        const bool wake = s_.rng.chance(50);
+        note(body_apply_linear_impulse(b, j, point, wake));
         break;
       }
       case k_op_angular_impulse:
@@ -582,14 +604,25 @@ class Driver {
         note(body_set_angular_velocity(b, s_.rng.symmetric(k_max_angular_speed)));
         break;
       case k_op_teleport:
-        note(body_set_transform(b, interior_point(t->extent + k_linear_slop), s_.rng.rotation()));
+      {
+        const Vec2 to = interior_point(t->extent + k_linear_slop);
+        const Rot q = s_.rng.rotation();
+        note(body_set_transform(b, to, q));
+      }
         break;
       case k_op_force:
-        note(body_apply_force_to_center(b, Vec2{s_.rng.symmetric(1000_q32), s_.rng.symmetric(1000_q32)} * body_mass(b),
-                                        s_.rng.chance(50)));
+      {
+        const Vec2 f = Vec2{s_.rng.symmetric(1000_q32), s_.rng.symmetric(1000_q32)} * body_mass(b);
+        const bool wake = s_.rng.chance(50);
+        note(body_apply_force_to_center(b, f, wake));
+      }
         break;
       case k_op_torque:
-        note(body_apply_torque(b, body_rotational_inertia(b) * s_.rng.symmetric(100_q32), s_.rng.chance(50)));
+      {
+        const Q32 torque = body_rotational_inertia(b) * s_.rng.symmetric(100_q32);
+        const bool wake = s_.rng.chance(50);
+        note(body_apply_torque(b, torque, wake));
+      }
         break;
       case k_op_destroy:
         note(destroy_body(b));
@@ -607,14 +640,19 @@ class Driver {
       case k_op_filter: {
         ShapeId shapes[16];
         const int32_t n = body_shapes(b, shapes, 16);
-        if (n > 0) note(shape_set_filter(shapes[s_.rng.range(0, (n < 16 ? n : 16) - 1)], random_filter()));
+        if (n > 0) {
+          const ShapeId shape = shapes[s_.rng.range(0, (n < 16 ? n : 16) - 1)];
+          note(shape_set_filter(shape, random_filter()));
+        }
         break;
       }
       case k_op_density: {
         ShapeId shapes[16];
         const int32_t n = body_shapes(b, shapes, 16);
-        if (n > 0) note(shape_set_density(shapes[s_.rng.range(0, (n < 16 ? n : 16) - 1)],
-                                          s_.rng.log_between(Q32::from_raw(1 << 16), k_max_density)));
+        if (n > 0) {
+          const ShapeId shape = shapes[s_.rng.range(0, (n < 16 ? n : 16) - 1)];
+          note(shape_set_density(shape, s_.rng.log_between(Q32::from_raw(1 << 16), k_max_density)));
+        }
         break;
       }
       case k_op_sleep:
