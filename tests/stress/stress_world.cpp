@@ -55,10 +55,13 @@ std::atomic<int64_t> g_faults{0};
 std::atomic<const char*> g_first_fault{nullptr};
 
 /// TANDEM_STRESS_ABORT_ON_FAULT=1: abort at the first fault (with
-/// ASAN_OPTIONS=handle_abort=1 a sanitizer build prints the stack).
+/// ASAN_OPTIONS=handle_abort=1 a sanitizer build prints the stack);
+/// TANDEM_STRESS_LOG_FAULTS=1: print every fault to stderr.
 void count_fault(FixedFault fault, const char* operation) {
   (void)fault;
   if (g_faults.fetch_add(1) == 0) g_first_fault.store(operation);
+  static const bool log_all = std::getenv("TANDEM_STRESS_LOG_FAULTS") != nullptr;
+  if (log_all) std::fprintf(stderr, "fault: %s in %s\n", fixed_fault_name(fault), operation);
   static const bool abort_now = std::getenv("TANDEM_STRESS_ABORT_ON_FAULT") != nullptr;
   if (abort_now) {
     std::fprintf(stderr, "tandem_stress: fixed-point %s in %s\n", fixed_fault_name(fault), operation);
