@@ -107,9 +107,11 @@ TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (
 // above only, so nothing bounds inv_inertia × r²). Seed 94 goes on to
 // overflow in the contact solve (246 "contact solve" faults, plus adds and
 // subtracts, by tick 512), which release builds compute without saturation
-// checks: its hash chain in g++ -O3 release differs from the clang sanitizer
-// build's from tick 512 on (seeds 55 and 9 still agree). A world inside every
-// API limit therefore splits x86-64 release peers from debug/sanitizer ones.
+// checks: its hash chain in g++ -O3 release (x86-64, native 128-bit path)
+// differs from tick 512 on from both the clang sanitizer build's and the
+// portable-int128 release build's (the i686/wasm32 path), which agree with
+// each other (seeds 55 and 9 agree everywhere). A world inside every API limit
+// therefore splits x86-64 release peers from i686/wasm32 and debug peers.
 // TANDEM_STRESS_LOG_FAULTS=1 tandem_stress --first-seed 94 --worlds 1 lists
 // the faults. Only builds with fault checks count faults.
 TEST_CASE("known issue 4: fixed-point overflow in contact preparation (stress seeds 55, 9, 94)",
