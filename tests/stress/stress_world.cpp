@@ -809,7 +809,7 @@ const char* escape_kind_name(EscapeKind kind) {
 }
 
 std::string describe(uint64_t seed, const StressResult& r) {
-  char text[512];
+  char text[1536];
   std::snprintf(text, sizeof text,
                 "seed %" PRIu64 ": %s%s; %s world, container ±%d m; %d bodies created, %d destroyed, %d shapes; %d inputs applied, "
                 "%d refused; %d steps; final hash %016" PRIx64,

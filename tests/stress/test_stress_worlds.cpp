@@ -63,7 +63,7 @@ TEST_CASE("random worlds: seeds 19-24 agree across broad phases and restore, sta
 // collision (tick 280); the next step leaves it at ω = −4,144 rad/s and
 // 231 m/s, and at tick 282 its centre is past the wall's middle. Seed 34: a
 // 0.005 m circle of 2.5 kg resting on the floor jumps in one step (tick 249)
-// to ω = 51,293 rad/s and 335 m/s and goes through the floor. About 2 % of
+// to ω = 51,293 rad/s and 335 m/s and goes through the floor. About 1.4 % of
 // all worlds (40 % of worlds are fast).
 TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impact (stress seeds 94, 34)",
           "[.][known-issue][stress]") {
@@ -82,7 +82,7 @@ TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impa
 // against a static box sinks into the box at about the contact push speed
 // (3 m/s, while its velocity reads zero) and comes out beyond it, in slow
 // worlds too. Seeds 6 (segment + 3 chain segments, 1 kg), 19, 22 (all slow
-// worlds); about 19 % of all worlds. Box2D ignores a polygon behind a
+// worlds); about 20 % of all worlds. Box2D ignores a polygon behind a
 // one-sided segment; the engine's chain-segment manifold apparently pushes
 // the wrong way.
 TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (stress seeds 6, 19, 22)",
