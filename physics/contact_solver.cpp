@@ -90,22 +90,14 @@ inline BodyState* body_state(BodyState* states, int32_t index, BodyState* dummy)
 // NDEBUG) use the checked operators, which also report the fault.
 namespace in_range {
 #if TANDEM_HAS_INT128 && defined(NDEBUG)
-__extension__ typedef __int128 s128;
-__extension__ typedef unsigned __int128 u128;
-// Saturates to ±(2^63 − 1) exactly where the checked path does (stress seed
-// 94 reaches it within the API limits): same bits in every build.
-inline Q32 round_shift(u128 sum) {
-  constexpr u128 limit = (u128{1} << 95) - (u128{1} << 31);
-  const s128 p = static_cast<s128>(sum);
-  if (sum + (limit - 1) >= 2 * limit - 1) [[unlikely]] {
-    return Q32::from_raw(p > 0 ? INT64_MAX : -INT64_MAX);
-  }
-  return Q32::from_raw(static_cast<int64_t>((p + ((s128{1} << 31) - (p < 0 ? 1 : 0))) >> 32));
-}
-inline u128 product(int64_t a, int64_t b) { return static_cast<u128>(static_cast<s128>(a) * b); }
-inline Q32 mul(Q32 a, Q32 b) { return round_shift(product(a.raw, b.raw)); }
-inline Q32 add(Q32 a, Q32 b) { return a + b; }  // saturating (checked operator, no report)
-inline Q32 sub(Q32 a, Q32 b) { return a - b; }
+// fast_math.h's helpers: same rounding and saturation as the checked
+// operators, no fault report.
+using fast::product;
+using fast::round_shift;
+using fast::u128;
+inline Q32 mul(Q32 a, Q32 b) { return fast::mul(a, b); }
+inline Q32 add(Q32 a, Q32 b) { return fast::add(a, b); }
+inline Q32 sub(Q32 a, Q32 b) { return fast::sub(a, b); }
 /// a·b + c·d, rounded once.
 inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round_shift(product(a.raw, b.raw) + product(c.raw, d.raw)); }
 /// a·b + c·d + e·f + g·h, rounded once.
