@@ -56,6 +56,18 @@ TEST_CASE("fast_math: mul, add, sub, sum2, diff2 give the checked operators' bit
               tandem::detail::sum_products(a.raw, b.raw, tandem::detail::neg_raw(c.raw), d.raw, "test").raw);
     }
   }
+  // Exactly at the rounding limit: 2^32·(2^63 − 1) + c·d = 2^95 − 2^31 (+ 0 or
+  // −1) rounds to 2^63 (saturates) or to 2^63 − 1 (does not).
+  const Q32 one = Q32::one(), max = Q32::from_raw(INT64_MAX), min = Q32::from_raw(-INT64_MAX);
+  for (int64_t c : {(int64_t{1} << 31) - 1, int64_t{1} << 31, (int64_t{1} << 31) + 1}) {
+    for (int64_t sign : {1, -1}) {
+      const Q32 cc = Q32::from_raw(sign * c), a = sign > 0 ? max : min;
+      REQUIRE(tandem::fast::sum2(one, a, cc, Q32::from_raw(1)).raw ==
+              tandem::detail::sum_products(one.raw, a.raw, cc.raw, 1, "test").raw);
+    }
+  }
+  CHECK(tandem::fast::sum2(one, max, Q32::from_raw(int64_t{1} << 31), Q32::from_raw(1)).raw == INT64_MAX);
+  CHECK(tandem::fast::sum2(one, max, Q32::from_raw((int64_t{1} << 31) - 1), Q32::from_raw(1)).raw == INT64_MAX);
   tandem::set_fixed_fault_handler(old);
   CHECK(saturated > 1000);  // the edges are really exercised
 }
