@@ -415,7 +415,7 @@ int32_t Session::frames_ahead() const {
   if (is_spectator() || sync_count_ == 0) return 0;
   const uint64_t n = std::min<uint64_t>(sync_count_, k_sync_samples);
   int64_t sum = 0;
-  for (uint64_t i = 0; i < n; ++i) sum += sync_samples_[i];
+  for (uint64_t i = 0; i < n; ++i) sum += sync_samples_[static_cast<size_t>(i)];
   const int64_t ahead = sum / static_cast<int64_t>(n) / 2;
   // Below k_sync_min_frames the difference is jitter (as GGPO's minimum frame advantage).
   if (ahead < k_sync_min_frames) return 0;
