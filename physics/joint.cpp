@@ -57,6 +57,16 @@ bool check_order(const char* function, const char* def_name, const char* lo_name
   return false;
 }
 
+/// lower_translation and upper_translation of a prismatic or wheel joint: each
+/// within ±k_max_joint_length m, lower ≤ upper.
+bool check_translation_limits(const char* function, const char* def_name, Q32 lower, Q32 upper, Status* out) {
+  return check_range(function, def_name, "lower_translation", lower, -k_max_joint_length, k_max_joint_length, "m",
+                     out) &&
+         check_range(function, def_name, "upper_translation", upper, -k_max_joint_length, k_max_joint_length, "m",
+                     out) &&
+         check_order(function, def_name, "lower_translation", lower, "upper_translation", upper, out);
+}
+
 /// Resolves the base's bodies and checks the shared fields. Writes the world
 /// and body indices.
 Status check_base(WorldId world_id, const JointBaseDef& base, int32_t cookie, const char* function,
@@ -346,12 +356,7 @@ Result<JointId> create_prismatic_joint(WorldId world, const PrismaticJointDef& d
   s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
   if (!s.ok()) return r;
   if (!check_axis(fn, dn, def.local_axis_a, &s) || !check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
-      !check_range(fn, dn, "lower_translation", def.lower_translation, -k_max_joint_length, k_max_joint_length, "m",
-                   &s) ||
-      !check_range(fn, dn, "upper_translation", def.upper_translation, -k_max_joint_length, k_max_joint_length, "m",
-                   &s) ||
-      !check_order(fn, dn, "lower_translation", def.lower_translation, "upper_translation", def.upper_translation,
-                   &s) ||
+      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, &s) ||
       !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_linear_speed, k_max_linear_speed, "m/s", &s) ||
       !check_range(fn, dn, "max_motor_force", def.max_motor_force, Q32::zero(), k_max_joint_force, "N", &s) ||
       !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s)) {
@@ -410,12 +415,7 @@ Result<JointId> create_wheel_joint(WorldId world, const WheelJointDef& def) {
   if (!s.ok()) return r;
   if (!check_axis(fn, dn, def.local_axis_a, &s) ||
       !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s) ||
-      !check_range(fn, dn, "lower_translation", def.lower_translation, -k_max_joint_length, k_max_joint_length, "m",
-                   &s) ||
-      !check_range(fn, dn, "upper_translation", def.upper_translation, -k_max_joint_length, k_max_joint_length, "m",
-                   &s) ||
-      !check_order(fn, dn, "lower_translation", def.lower_translation, "upper_translation", def.upper_translation,
-                   &s) ||
+      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, &s) ||
       !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_angular_speed, k_max_angular_speed, "rad/s", &s) ||
       !check_range(fn, dn, "max_motor_torque", def.max_motor_torque, Q32::zero(), k_max_joint_torque, "N·m", &s)) {
     return r;
