@@ -111,7 +111,7 @@ enum class StatusCode : int32_t {
 };
 
 /// The outcome of a call: ok, or a code and a message naming the culprit.
-struct Status {
+struct [[nodiscard]] Status {
   StatusCode code = StatusCode::ok;
   std::string message;  ///< empty when ok
   /// True when the call succeeded.
@@ -120,7 +120,7 @@ struct Status {
 
 /// A Status and, when it is ok, a value (a default-constructed T otherwise).
 template <typename T>
-struct Result {
+struct [[nodiscard]] Result {
   Status status;
   T value{};
   /// True when the call succeeded and `value` is meaningful.

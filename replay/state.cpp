@@ -1465,7 +1465,7 @@ Result<WorldId> create_world_from_snapshot(const uint8_t* data, size_t size) {
   if (!result.ok()) return result;
   Status s = world_restore(result.value, data, size);
   if (!s.ok()) {
-    destroy_world(result.value);
+    (void)destroy_world(result.value);  // just created: cannot fail
     result.value = WorldId{};
     result.status = make_status(s.code, "create_world_from_snapshot: " + s.message);
   }

@@ -1068,7 +1068,7 @@ TEST_CASE("the same world through C and C++ hashes the same every tick", "[capi]
     INFO("tick " << tick + 1);
     REQUIRE(world_state_hash(cw) == tandem_world_state_hash(c.id));
   }
-  destroy_world(cw);
+  CHECK(destroy_world(cw).ok());
 }
 
 TEST_CASE("every bundled scene through the C scene API hashes as through C++", "[capi][determinism]") {
@@ -1096,7 +1096,7 @@ TEST_CASE("every bundled scene through the C scene API hashes as through C++", "
       INFO("tick " << tick + 1);
       REQUIRE(world_state_hash(built.value.world) == tandem_world_state_hash(cw));
     }
-    destroy_world(built.value.world);
+    (void)destroy_world(built.value.world);
     REQUIRE(tandem_destroy_world(cw) == TANDEM_OK);
     REQUIRE(tandem_scene_destroy(cs) == TANDEM_OK);
   }

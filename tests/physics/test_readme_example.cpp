@@ -13,6 +13,7 @@ using namespace tandem::literals;
 namespace {
 Q32 readme_example() {
   // --- README example begins ---
+  auto check = [](const Status& s) { if (!s.ok()) std::printf("%s\n", s.message.c_str()); };  // [[nodiscard]]
   WorldDef world_def = default_world_def();          // gravity (0, -10), 4 sub-steps, ...
   WorldId world = create_world(world_def).value;
 
@@ -20,7 +21,7 @@ Q32 readme_example() {
   BodyId ground = create_body(world, ground_def).value;
   Polygon ground_box;
   make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);  // top face at y = 0
-  create_polygon_shape(ground, default_shape_def(), ground_box);
+  check(create_polygon_shape(ground, default_shape_def(), ground_box).status);
 
   BodyDef ball_def = default_body_def();
   ball_def.type = BodyType::dynamic_body;
@@ -29,7 +30,7 @@ Q32 readme_example() {
   ShapeDef ball_shape = default_shape_def();
   ball_shape.restitution = 1_q32;                    // a perfectly elastic bounce
   ball_shape.friction = 0_q32;
-  create_circle_shape(ball, ball_shape, Circle{Vec2{}, 0.5_q32});
+  check(create_circle_shape(ball, ball_shape, Circle{Vec2{}, 0.5_q32}).status);
 
   const Q32 dt = Q32::from_ratio(1, 60);             // exact: the raw value nearest 1/60 s
   for (int tick = 0; tick < 600; ++tick) {
@@ -41,7 +42,7 @@ Q32 readme_example() {
 
   Status bad = body_set_linear_velocity(ball, Vec2{5000_q32, 0_q32});
   // bad.message: "body_set_linear_velocity: ... is above the world's maximum linear speed ..."
-  destroy_world(world);
+  check(destroy_world(world));
   // --- README example ends ---
   CHECK_FALSE(bad.ok());
   CHECK(bad.message.find("body_set_linear_velocity") == 0);
@@ -64,7 +65,7 @@ void readme_events_example() {
   BodyId ground = create_body(world, default_body_def()).value;
   Polygon ground_box;
   make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
-  create_polygon_shape(ground, default_shape_def(), ground_box);
+  REQUIRE(create_polygon_shape(ground, default_shape_def(), ground_box).ok());
   BodyDef ball_def = default_body_def();
   ball_def.type = BodyType::dynamic_body;
   ball_def.position = Vec2{0_q32, 3_q32};
@@ -86,7 +87,7 @@ void readme_events_example() {
   RayHit hit = world_cast_ray_closest(world, Vec2{0_q32, 10_q32}, Vec2{0_q32, -20_q32}).value;
   // hit.shape is the ball's shape; hit.point, hit.normal, hit.fraction
   std::vector<ShapeId> found;
-  world_overlap_aabb(world, AABB{{Q32(-1), Q32(-1)}, {1_q32, 1_q32}}, QueryFilter{}, &found);  // id order
+  Status query = world_overlap_aabb(world, AABB{{Q32(-1), Q32(-1)}, {1_q32, 1_q32}}, QueryFilter{}, &found);  // id order
   // --- README events example ends ---
   CHECK(begins == 1);
   CHECK(hits == 1);
@@ -94,8 +95,9 @@ void readme_events_example() {
   CHECK(hit.hit);
   CHECK(hit.shape == ball_shape_id);
   CHECK(body_is_awake(ball) == false);
+  CHECK(query.ok());
   CHECK(found.size() == 2);
-  destroy_world(world);
+  CHECK(destroy_world(world).ok());
 }
 }  // namespace
 

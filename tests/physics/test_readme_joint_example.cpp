@@ -48,10 +48,11 @@ Outcome grappling_hook(WorldId world, BodyId ceiling, BodyId player, const std::
     }
     if (!is_null(hook) && in.reel != 0) {           // reel by 5 cm a tick, between 1 m and 20 m
       rope = clamp(rope + Q32::from_ratio(in.reel * 5, 100), 1_q32, 20_q32);
-      joint_set_limits(hook, 0_q32, rope);          // a Status names the problem if refused
+      Status s = joint_set_limits(hook, 0_q32, rope);
+      if (!s.ok()) std::printf("%s\n", s.message.c_str());  // names the joint, field and range
     }
     if (in.release && !is_null(hook)) {
-      destroy_joint(hook);
+      (void)destroy_joint(hook);                    // refused only for a stale handle
       hook = JointId{};
     }
     world_step(world, Q32::from_ratio(1, 60));
@@ -91,5 +92,5 @@ TEST_CASE("README joint example: a grappling hook attaches, reels in and release
   CHECK(o.height_when_reeled > 4_q32);  // pulled up towards the ceiling (it hung at y < 2.1 m on the full rope)
   CHECK(o.hook_gone);
   CHECK(o.fall_speed > 5_q32);          // falling freely for 2 s after the release
-  destroy_world(world);
+  (void)destroy_world(world);
 }

@@ -149,6 +149,6 @@ TEST_CASE("joint commands: applied through the joint API, errors name the comman
     REQUIRE(world_step(again, Q32::from_ratio(1, 60)).ok());
   }
   CHECK(world_state_hash(again) == hash);
-  destroy_world(again);
-  destroy_world(world);
+  CHECK(destroy_world(again).ok());
+  CHECK(destroy_world(world).ok());
 }

@@ -4,6 +4,8 @@
 // README's "Replay" example.
 #include <catch2/catch.hpp>
 
+#include <cstdio>
+
 #include <cstdint>
 #include <vector>
 
@@ -31,24 +33,27 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
   const Q32 dt = Q32::from_ratio(1, 60);
 
   // --- README replay example begins ---
+  // Fallible calls return a [[nodiscard]] Status; `check` prints its message.
+  auto check = [](const Status& s) { if (!s.ok()) std::fprintf(stderr, "%s\n", s.message.c_str()); return s.ok(); };
+
   // Rollback: snapshot into a caller-supplied buffer, step ahead, restore.
   std::vector<uint8_t> snapshot(world_snapshot_size(world));
   size_t written = 0;
-  world_snapshot(world, snapshot.data(), snapshot.size(), &written);
+  check(world_snapshot(world, snapshot.data(), snapshot.size(), &written));
   const uint64_t before = world_state_hash(world);     // XXH3-64 of the canonical little-endian state
   for (int i = 0; i < 8; ++i) world_step(world, dt);
-  world_restore(world, snapshot.data(), written);      // same handles, same free lists, same bits
+  check(world_restore(world, snapshot.data(), written));  // same handles, same free lists, same bits
   const bool restored = world_state_hash(world) == before;
 
   // Record a replay (commands + a hash per tick + keyframes), then verify it.
   ReplayRecorder recorder;
   recorder.open_memory();                              // or open_file("run.tandem-replay")
-  recorder.begin(world, {});                           // header + the tick-0 keyframe
-  recorder.submit(make_apply_linear_impulse_to_center(body_ref(ball), Vec2{2_q32, 0_q32}));
-  for (int i = 0; i < 120; ++i) recorder.step();
-  recorder.finish();
+  check(recorder.begin(world, {}));                    // header + the tick-0 keyframe
+  check(recorder.submit(make_apply_linear_impulse_to_center(body_ref(ball), Vec2{2_q32, 0_q32})));
+  for (int i = 0; i < 120; ++i) recorder.step();      // a StepResult, like world_step
+  check(recorder.finish());
   Replay replay;
-  read_replay(recorder.memory(), &replay);
+  check(read_replay(recorder.memory(), &replay));
   const VerifyReport report = verify_replay(replay);   // re-simulates, compares every tick's hash
   // format_verify_report(report) says where a run first differed: tick, body, field
 
@@ -57,7 +62,7 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
   SyncTestOptions sync;
   sync.ticks = 60;
   SyncTestReport sync_report;
-  run_synctest(world, sync, [](WorldId, int64_t) {}, &sync_report);
+  check(run_synctest(world, sync, [](WorldId, int64_t) {}, &sync_report));
   // --- README replay example ends ---
 
   CHECK(written == snapshot.size());

@@ -61,7 +61,8 @@ void frame(Peer& peer, uint8_t my_input) {  // once per frame, 60 Hz
     peer.session.advance_frame({&my_input, 1});  // steps, or stalls while inputs are missing
   }
   if (peer.session.state() == SessionState::desynced) {
-    peer.session.write_artifacts("desync");      // desync.replay + desync.state for `tandem diff`
+    Status s = peer.session.write_artifacts("desync");  // desync.replay + desync.state for `tandem diff`
+    if (!s.ok()) std::fprintf(stderr, "%s\n", s.message.c_str());
   }
 }
 // --- README session example ends ---

@@ -258,10 +258,10 @@ TEST_CASE("state: corrupt, truncated and foreign images are refused and the worl
 
   std::vector<uint8_t> bad = good;
   bad[0] = 'X';
-  refused(bad, "magic");
+  (void)refused(bad, "magic");
   bad = good;
   bad[4] = 3;  // 1 and 2 (with joints) are both valid
-  refused(bad, "version");
+  (void)refused(bad, "version");
   // Truncated at every length in the first 200 bytes and a spread of others.
   for (size_t n = 0; n < good.size(); n += (n < 200 ? 1 : 97)) {
     std::vector<uint8_t> cut(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n));
@@ -271,7 +271,7 @@ TEST_CASE("state: corrupt, truncated and foreign images are refused and the worl
   // Trailing data.
   bad = good;
   bad.push_back(0);
-  refused(bad, "end of the image");
+  (void)refused(bad, "end of the image");
   // A body type out of range: the first body record follows the body pool.
   {
     DecodedState d;

@@ -50,8 +50,8 @@ TEST_CASE("scene joints: loaded, built and stepped; the create commands build th
   for (const Command& c : scene_create_commands(s.value)) REQUIRE(apply_command(again, c).ok());
   for (int t = 0; t < 120; ++t) REQUIRE(world_step(again, s.value.time_step).ok());
   CHECK(world_state_hash(again) == world_state_hash(built.value.world));
-  destroy_world(again);
-  destroy_world(built.value.world);
+  CHECK(destroy_world(again).ok());
+  CHECK(destroy_world(built.value.world).ok());
 }
 
 TEST_CASE("scene joints: errors carry the JSON pointer", "[scene][joint]") {
@@ -60,7 +60,7 @@ TEST_CASE("scene joints: errors carry the JSON pointer", "[scene][joint]") {
     Result<Scene> s = load_scene_text(text, "j.json");
     if (!s.ok()) return s.status.message;
     Result<BuiltScene> b = build_world(s.value);
-    if (b.ok()) destroy_world(b.value.world);
+    if (b.ok()) CHECK(destroy_world(b.value.world).ok());
     return b.status.message;
   };
   CHECK(error(R"({"type": "hinge", "body_a": 0, "body_b": 1})").find("j.json: /joints/0/type: unknown value \"hinge\"; expected one of") == 0);

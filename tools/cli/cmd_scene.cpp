@@ -95,7 +95,7 @@ struct Session {
   bool profiling = false;               // run --profile: record world_profile() after every timed step
   bench::ProfileSeries profile;
   ~Session() {
-    if (!is_null(built.world)) destroy_world(built.world);
+    if (!is_null(built.world)) (void)destroy_world(built.world);
   }
 };
 

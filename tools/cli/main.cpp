@@ -89,11 +89,13 @@ double body_energy(BodyId b, double g) {
 // Section 5 of the demo: two small scenes on the physics module.
 void run_physics_preview() {
   const Q32 dt = Q32::from_ratio(1, 60);
+  // Building this fixed scene cannot fail; if it ever does, say so.
+  auto check = [](const Status& s) { if (!s.ok()) std::printf("  setup failed: %s\n", s.message.c_str()); };
   WorldId world = create_world(default_world_def()).value;
   BodyId ground = create_body(world, default_body_def()).value;
   Polygon ground_box;
   make_offset_box(40_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
-  create_polygon_shape(ground, default_shape_def(), ground_box);
+  check(create_polygon_shape(ground, default_shape_def(), ground_box).status);
 
   // An elastic ball dropped from 10 m (the report's accuracy test).
   BodyDef ball_def = default_body_def();
@@ -103,7 +105,7 @@ void run_physics_preview() {
   ShapeDef bouncy = default_shape_def();
   bouncy.restitution = 1_q32;
   bouncy.friction = 0_q32;
-  create_circle_shape(ball, bouncy, Circle{Vec2{}, 0.5_q32});
+  check(create_circle_shape(ball, bouncy, Circle{Vec2{}, 0.5_q32}).status);
 
   // A stack of ten 1 m boxes.
   std::vector<BodyId> stack;
@@ -114,7 +116,7 @@ void run_physics_preview() {
     d.type = BodyType::dynamic_body;
     d.position = Vec2{Q32(5), Q32::from_ratio(2 * i + 1, 2)};
     stack.push_back(create_body(world, d).value);
-    create_polygon_shape(stack.back(), default_shape_def(), box);
+    check(create_polygon_shape(stack.back(), default_shape_def(), box).status);
   }
   const double e0 = body_energy(ball, 10.0);
   double e_min = e0, e_max = e0;
@@ -139,7 +141,7 @@ void run_physics_preview() {
   std::printf("  - stack of 10 boxes: top box centre at (%s, %s) m (started at (5, 9.5))\n",
               to_string(top.x).substr(0, 12).c_str(), to_string(top.y).substr(0, 12).c_str());
   std::printf("  - fingerprint of both trajectories: 0x%016" PRIx64 "\n", fp.h);
-  destroy_world(world);
+  check(destroy_world(world));
 }
 
 void print_rule(char c = '-') {

@@ -956,7 +956,7 @@ Result<BuiltScene> build_world(const Scene& scene) {
   BuiltScene built;
   built.world = world.value;
   auto refuse = [&](const std::string& path, const Status& status) {
-    destroy_world(built.world);
+    (void)destroy_world(built.world);  // created above: cannot fail
     out.status = error_status(scene.name + ": " + show_path(path) + ": " + status.message);
     return out;
   };
