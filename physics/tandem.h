@@ -39,6 +39,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixed/fixed.h"
@@ -178,6 +179,48 @@ bool world_is_valid(WorldId world);
 
 /// Ok when the handle names a live world; otherwise says why not.
 Status world_check(WorldId world);
+
+/// Owns a world and destroys it when it goes out of scope (RAII, move-only),
+/// so a world cannot leak on an early return. `id` is the handle, usable with
+/// every world_* function; a null `id` owns nothing.
+///
+///   UniqueWorld world = make_unique_world(default_world_def()).value;
+///   BodyId body = create_body(world.id, default_body_def()).value;
+struct UniqueWorld {
+  WorldId id{};  ///< the owned world (null: none)
+
+  UniqueWorld() = default;
+  /// Takes ownership of `world` (which may be null).
+  explicit UniqueWorld(WorldId world) : id(world) {}
+  ~UniqueWorld() { reset(); }
+  UniqueWorld(UniqueWorld&& other) noexcept : id(other.release()) {}
+  UniqueWorld& operator=(UniqueWorld&& other) noexcept {
+    if (this != &other) reset(other.release());
+    return *this;
+  }
+  UniqueWorld(const UniqueWorld&) = delete;
+  UniqueWorld& operator=(const UniqueWorld&) = delete;
+
+  /// Destroys the owned world (if it is still live) and owns `world` instead.
+  void reset(WorldId world = {}) {
+    // A world destroyed through the handle elsewhere is stale here: nothing to do.
+    if (world_is_valid(id)) (void)destroy_world(id);
+    id = world;
+  }
+  /// Gives up ownership without destroying the world; returns its handle.
+  WorldId release() {
+    const WorldId world = id;
+    id = WorldId{};
+    return world;
+  }
+};
+
+/// create_world(def) wrapped in a UniqueWorld; the status says why not (and
+/// the UniqueWorld is then null).
+inline Result<UniqueWorld> make_unique_world(const WorldDef& def) {
+  Result<WorldId> created = create_world(def);
+  return Result<UniqueWorld>{std::move(created.status), UniqueWorld{created.value}};
+}
 
 /// Advances the world by time_step seconds (Q32.32, 0 ≤ time_step ≤
 /// k_max_time_step; 0 does nothing) in sub_step_count sub-steps of

@@ -13,17 +13,7 @@ namespace tandem {
 
 namespace {
 
-// A world destroyed when it goes out of scope.
-struct OwnedWorld {
-  WorldId id;
-  OwnedWorld() = default;
-  explicit OwnedWorld(WorldId w) : id(w) {}
-  ~OwnedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  OwnedWorld(const OwnedWorld&) = delete;
-  OwnedWorld& operator=(const OwnedWorld&) = delete;
-};
+using OwnedWorld = UniqueWorld;
 
 Status fail(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
 

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "physics/tandem.h"
+#include "../test_world.h"
 
 namespace tandem::test_support {
 
@@ -17,18 +18,8 @@ inline long double ld(Q32 v) { return static_cast<long double>(v.raw) / k_two32;
 inline const Q32 k_dt = Q32::from_ratio(1, 60);
 
 /// A world created from `def` and destroyed when the test case ends.
-struct ScopedWorld {
-  WorldId id;
-  explicit ScopedWorld(const WorldDef& def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-  }
-  ~ScopedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  ScopedWorld(const ScopedWorld&) = delete;
-  ScopedWorld& operator=(const ScopedWorld&) = delete;
+struct ScopedWorld : UniqueWorld {
+  explicit ScopedWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
 };
 
 }  // namespace tandem::test_support

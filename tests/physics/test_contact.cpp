@@ -12,6 +12,7 @@
 #include "physics/contact_solver.h"
 #include "physics/tandem.h"
 #include "physics/world.h"
+#include "../test_world.h"
 
 using namespace tandem;
 
@@ -19,20 +20,11 @@ namespace {
 
 const Q32 k_dt = Q32::from_ratio(1, 60);
 
-struct ScopedWorld {
-  WorldId id;
+/// A world and its internals (this test reads contacts directly).
+struct ScopedWorld : UniqueWorld {
   World* world = nullptr;
-  explicit ScopedWorld(const WorldDef& def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-    world = find_world(id);
-  }
-  ~ScopedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  ScopedWorld(const ScopedWorld&) = delete;
-  ScopedWorld& operator=(const ScopedWorld&) = delete;
+  explicit ScopedWorld(const WorldDef& def = default_world_def())
+      : UniqueWorld(test_world::require_world(def).release()), world(find_world(id)) {}
 };
 
 BodyId make_body(WorldId w, BodyType type, Vec2 p) {

@@ -13,25 +13,16 @@
 #include "replay/commands.h"
 #include "replay/replay_file.h"
 #include "replay/state.h"
+#include "../test_world.h"
 
 namespace tandem::replay_file_test {
 
 using namespace tandem::literals;
 
 /// A world destroyed at the end of the scope.
-struct OwnedWorld {
-  WorldId id;
-  explicit OwnedWorld(const WorldDef& def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-  }
-  explicit OwnedWorld(WorldId w) : id(w) {}
-  ~OwnedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  OwnedWorld(const OwnedWorld&) = delete;
-  OwnedWorld& operator=(const OwnedWorld&) = delete;
+struct OwnedWorld : UniqueWorld {
+  explicit OwnedWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
+  explicit OwnedWorld(WorldId w) : UniqueWorld(w) {}
 };
 
 inline ShapeSpec box_spec(Q32 hw, Q32 hh) {

@@ -93,6 +93,7 @@ TEST_CASE("every README example compiled by a test appears in README.md as writt
   const std::vector<std::string> sources = {
       root + "/tests/physics/test_readme_example.cpp",
       root + "/tests/physics/test_readme_joint_example.cpp",
+      root + "/tests/physics/test_unique_world.cpp",
       root + "/tests/replay/test_readme_example.cpp",
       root + "/tests/replay/test_session_readme.cpp",
   };
@@ -106,5 +107,5 @@ TEST_CASE("every README example compiled by a test appears in README.md as writt
       ++checked;
     }
   }
-  CHECK(checked >= 5);  // physics, events, joint, replay, session
+  CHECK(checked >= 6);  // physics, events, joint, owning, replay, session
 }

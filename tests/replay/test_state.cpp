@@ -31,16 +31,7 @@ using namespace tandem::literals;
 
 constexpr int64_t k_ticks = 600;
 
-/// Destroys a world at scope end.
-struct OwnedWorld {
-  WorldId id;
-  explicit OwnedWorld(WorldId w) : id(w) {}
-  ~OwnedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  OwnedWorld(const OwnedWorld&) = delete;
-  OwnedWorld& operator=(const OwnedWorld&) = delete;
-};
+using OwnedWorld = UniqueWorld;
 
 /// The original run: hash after each tick (index t = after t steps) and the
 /// snapshot before each tick.

@@ -12,6 +12,7 @@
 
 #include "fixed/fault.h"
 #include "physics/tandem.h"
+#include "../test_world.h"
 
 namespace {
 
@@ -34,16 +35,8 @@ struct FaultCount {
 };
 
 /// A world destroyed when the test ends.
-struct TestWorld {
-  WorldId id;
-  explicit TestWorld(WorldDef def = default_world_def()) {
-    Result<WorldId> r = create_world(def);
-    REQUIRE(r.ok());
-    id = r.value;
-  }
-  ~TestWorld() { (void)destroy_world(id); }
-  TestWorld(const TestWorld&) = delete;
-  TestWorld& operator=(const TestWorld&) = delete;
+struct TestWorld : UniqueWorld {
+  explicit TestWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
 };
 
 BodyId static_box(WorldId w, Vec2 position, Q32 hw, Q32 hh) {

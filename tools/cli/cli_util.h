@@ -44,15 +44,7 @@ int fail(const char* command, const std::string& message);
 /// --quiet leaves).
 void add_output_flags(CLI::App* command, bool* json, bool* quiet, const char* quiet_help);
 
-/// A world destroyed at the end of the scope (null handles are fine).
-struct OwnedWorld {
-  WorldId id;
-  explicit OwnedWorld(WorldId w = {}) : id(w) {}
-  ~OwnedWorld() {
-    if (world_is_valid(id)) (void)destroy_world(id);
-  }
-  OwnedWorld(const OwnedWorld&) = delete;
-  OwnedWorld& operator=(const OwnedWorld&) = delete;
-};
+/// A world destroyed at the end of the scope: the public owning wrapper.
+using OwnedWorld = UniqueWorld;
 
 }  // namespace tandem::cli

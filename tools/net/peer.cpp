@@ -17,10 +17,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
     out->status = w.status;
     return;
   }
-  struct WorldGuard {
-    WorldId id;
-    ~WorldGuard() { (void)destroy_world(id); }
-  } guard{w.value};
+  const UniqueWorld guard{w.value};
   arena::Game game;
   out->status = game.build(w.value, o.config.player_count, o.crates);
   if (!out->status.ok()) return;
