@@ -7,13 +7,13 @@
 
 namespace tandem {
 
-GeometryStatus make_chain_segments(const Vec2* points, int32_t count, bool loop, int32_t chain_id,
+Status make_chain_segments(const Vec2* points, int32_t count, bool loop, int32_t chain_id,
                                    ChainSegment* out_segments, int32_t capacity, int32_t* out_count) {
-  GeometryStatus status;
+  Status status;
   *out_count = 0;
   const int32_t min_points = loop ? 3 : 4;
   if (points == nullptr || count < min_points) {
-    status.ok = false;
+    status.code = StatusCode::invalid_argument;
     status.message = std::string("chain: ") + (loop ? "a loop" : "an open chain") + " needs at least " +
                      std::to_string(min_points) + " points, got " + std::to_string(points ? count : 0) +
                      (loop ? "" : " (the first and last points are ghost vertices only)");
@@ -24,7 +24,7 @@ GeometryStatus make_chain_segments(const Vec2* points, int32_t count, bool loop,
   for (int32_t i = 0; i < edges; ++i) {
     const int32_t j = (i + 1) % count;
     if (distance_squared(points[i], points[j]) < k_linear_slop * k_linear_slop) {
-      status.ok = false;
+      status.code = StatusCode::invalid_argument;
       status.message = "chain: points " + std::to_string(i) + " and " + std::to_string(j) + " are " +
                        to_string(distance(points[i], points[j])) + " m apart, need at least " +
                        to_string(k_linear_slop) + " m";
@@ -33,7 +33,7 @@ GeometryStatus make_chain_segments(const Vec2* points, int32_t count, bool loop,
   }
   const int32_t segments = loop ? count : count - 3;
   if (segments > capacity || out_segments == nullptr) {
-    status.ok = false;
+    status.code = StatusCode::invalid_argument;
     status.message = "chain: " + std::to_string(segments) + " segments do not fit the output capacity of " +
                      std::to_string(capacity);
     return status;

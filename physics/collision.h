@@ -25,6 +25,7 @@
 
 #include "fixed/fixed.h"
 #include "fixed/vec2.h"
+#include "physics/status.h"
 
 namespace tandem {
 
@@ -112,11 +113,9 @@ struct ChainSegment {
 /// The kinds of shape, in the order used by the manifold dispatch table.
 enum class ShapeType : int32_t { circle = 0, capsule, segment, polygon, chain_segment, count };
 
-/// A status: ok, or an error message that names the culprit.
-struct GeometryStatus {
-  bool ok = true;
-  std::string message;  ///< empty when ok
-};
+/// Deprecated alias, kept for one release: geometry builders return the
+/// API's one error type, Status (StatusCode::invalid_argument when refused).
+using GeometryStatus [[deprecated("use Status")]] = Status;
 
 // ---------------------------------------------------------------------------
 // Builders (reject degenerate input with a message)
@@ -137,7 +136,7 @@ struct Hull {
 /// Deterministic: the same points in any order give the same hull bits,
 /// counter-clockwise from the lowest-then-leftmost point. On error *out_hull
 /// is empty (count 0).
-GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull);
+Status compute_hull(const Vec2* points, int32_t count, Hull* out_hull);
 
 /// Builds the one-sided segments of a chain from its vertices (local, m).
 /// Open chain (loop = false): points[0] and points[count−1] are ghost
@@ -149,40 +148,40 @@ GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull);
 /// too few points, and consecutive vertices closer than k_linear_slop.
 /// Writes at most `capacity` segments to out_segments and the count to
 /// *out_count; the chain_id of each segment is set to `chain_id`.
-GeometryStatus make_chain_segments(const Vec2* points, int32_t count, bool loop, int32_t chain_id,
+Status make_chain_segments(const Vec2* points, int32_t count, bool loop, int32_t chain_id,
                                    ChainSegment* out_segments, int32_t capacity, int32_t* out_count);
 
 /// Makes a polygon from a hull with an optional rounding radius (≥ 0):
 /// checks the hull (3…8 vertices, strictly convex, CCW, in range, area) and
 /// computes the unit normals and the area centroid (within 1 raw unit). On
 /// error *out_polygon is empty (count 0).
-GeometryStatus make_polygon(const Hull& hull, Q32 radius, Polygon* out_polygon);
+Status make_polygon(const Hull& hull, Q32 radius, Polygon* out_polygon);
 
 /// Makes a polygon from a point cloud: compute_hull then make_polygon.
-GeometryStatus make_polygon_from_points(const Vec2* points, int32_t count, Q32 radius, Polygon* out_polygon);
+Status make_polygon_from_points(const Vec2* points, int32_t count, Q32 radius, Polygon* out_polygon);
 
 /// An axis-aligned box centred on the origin (half widths within
 /// [k_min_shape_size, k_max_shape_size], m). Exact: vertices ±half extents
 /// CCW from (−hw, −hh), axis normals, centroid 0.
-GeometryStatus make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon);
+Status make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon);
 /// A box centred at `center`, rotated by `angle` radians, with a rounding
 /// radius (≥ 0).
-GeometryStatus make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32 angle, Q32 radius,
+Status make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32 angle, Q32 radius,
                                Polygon* out_polygon);
 
 /// Checks a circle (radius within [k_min_shape_size, k_max_shape_size],
 /// centre ± radius within ±k_max_shape_size).
-GeometryStatus validate_circle(const Circle& circle);
+Status validate_circle(const Circle& circle);
 /// Checks a capsule (radius as for a circle, centres in range and at least
 /// k_linear_slop apart).
-GeometryStatus validate_capsule(const Capsule& capsule);
+Status validate_capsule(const Capsule& capsule);
 /// Checks a segment (end points at least k_linear_slop apart).
-GeometryStatus validate_segment(const Segment& segment);
+Status validate_segment(const Segment& segment);
 /// Checks a polygon made by hand: count in range, strictly convex, CCW,
 /// coordinates in range, area ≥ k_min_polygon_area, radius in [0,
 /// k_max_shape_size], each normal within k_polygon_normal_tolerance of its
 /// edge's unit outward normal, centroid within k_polygon_centroid_tolerance.
-GeometryStatus validate_polygon(const Polygon& polygon);
+Status validate_polygon(const Polygon& polygon);
 
 // ---------------------------------------------------------------------------
 // Mass and bounds

@@ -88,8 +88,8 @@ std::string point_text(Vec2 p) { return cat("(", decimal(p.x), ", ", decimal(p.y
 
 /// A failed status whose message is the pieces concatenated.
 template <typename... Parts>
-GeometryStatus fail(const Parts&... parts) {
-  return GeometryStatus{false, cat(parts...)};
+Status fail(const Parts&... parts) {
+  return Status{StatusCode::invalid_argument, cat(parts...)};
 }
 
 /// True when |x| + margin and |y| + margin are within k_max_shape_size
@@ -155,7 +155,7 @@ Q32 doubled_area(const Vec2* v, int32_t count) {
 /// Checks vertex count, range, strict convexity, counter-clockwise order and
 /// area of a vertex list (the shared part of make_polygon and
 /// validate_polygon).
-GeometryStatus check_convex_vertices(const Vec2* v, int32_t count, Q32 radius) {
+Status check_convex_vertices(const Vec2* v, int32_t count, Q32 radius) {
   if (count < 3 || count > k_max_polygon_vertices) {
     return fail("polygon: ", std::to_string(count), " vertices, need 3 to ",
                 std::to_string(k_max_polygon_vertices));
@@ -201,7 +201,7 @@ Polygon build_polygon(const Vec2* v, int32_t count, Q32 radius) {
   return p;
 }
 
-GeometryStatus check_size(const char* shape, const char* what, Q32 value) {
+Status check_size(const char* shape, const char* what, Q32 value) {
   if (value < k_min_shape_size || value > k_max_shape_size) {
     return fail(std::string(shape), ": ", what, " ", decimal(value), " m is outside [",
                 decimal(k_min_shape_size), ", ", decimal(k_max_shape_size), "] m");
@@ -211,7 +211,7 @@ GeometryStatus check_size(const char* shape, const char* what, Q32 value) {
 
 }  // namespace
 
-GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull) {
+Status compute_hull(const Vec2* points, int32_t count, Hull* out_hull) {
   *out_hull = Hull{};
   if (points == nullptr || count < 3) {
     return fail("polygon: ", std::to_string(points == nullptr ? 0 : count), " points given, need at least 3");
@@ -316,27 +316,27 @@ GeometryStatus compute_hull(const Vec2* points, int32_t count, Hull* out_hull) {
   return {};
 }
 
-GeometryStatus make_polygon(const Hull& hull, Q32 radius, Polygon* out_polygon) {
+Status make_polygon(const Hull& hull, Q32 radius, Polygon* out_polygon) {
   *out_polygon = Polygon{};
-  GeometryStatus s = check_convex_vertices(hull.points.data(), hull.count, radius);
-  if (!s.ok) return s;
+  Status s = check_convex_vertices(hull.points.data(), hull.count, radius);
+  if (!s.ok()) return s;
   *out_polygon = build_polygon(hull.points.data(), hull.count, radius);
   return s;
 }
 
-GeometryStatus make_polygon_from_points(const Vec2* points, int32_t count, Q32 radius, Polygon* out_polygon) {
+Status make_polygon_from_points(const Vec2* points, int32_t count, Q32 radius, Polygon* out_polygon) {
   *out_polygon = Polygon{};
   Hull hull;
-  GeometryStatus s = compute_hull(points, count, &hull);
-  if (!s.ok) return s;
+  Status s = compute_hull(points, count, &hull);
+  if (!s.ok()) return s;
   return make_polygon(hull, radius, out_polygon);
 }
 
-GeometryStatus make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon) {
+Status make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon) {
   *out_polygon = Polygon{};
-  GeometryStatus s = check_size("box", "half width", half_width);
-  if (s.ok) s = check_size("box", "half height", half_height);
-  if (!s.ok) return s;
+  Status s = check_size("box", "half width", half_width);
+  if (s.ok()) s = check_size("box", "half height", half_height);
+  if (!s.ok()) return s;
   Polygon& p = *out_polygon;
   p.count = 4;
   p.vertices[0] = {-half_width, -half_height};
@@ -350,12 +350,12 @@ GeometryStatus make_box(Q32 half_width, Q32 half_height, Polygon* out_polygon) {
   return s;
 }
 
-GeometryStatus make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32 angle, Q32 radius,
+Status make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32 angle, Q32 radius,
                                Polygon* out_polygon) {
   *out_polygon = Polygon{};
-  GeometryStatus s = check_size("box", "half width", half_width);
-  if (s.ok) s = check_size("box", "half height", half_height);
-  if (!s.ok) return s;
+  Status s = check_size("box", "half width", half_width);
+  if (s.ok()) s = check_size("box", "half height", half_height);
+  if (!s.ok()) return s;
   if (radius < Q32::zero() || radius > k_max_shape_size) {
     return fail("box: radius ", decimal(radius), " m is outside [0, ", decimal(k_max_shape_size), "] m");
   }
@@ -383,9 +383,9 @@ GeometryStatus make_offset_box(Q32 half_width, Q32 half_height, Vec2 center, Q32
   return s;
 }
 
-GeometryStatus validate_circle(const Circle& circle) {
-  GeometryStatus s = check_size("circle", "radius", circle.radius);
-  if (!s.ok) return s;
+Status validate_circle(const Circle& circle) {
+  Status s = check_size("circle", "radius", circle.radius);
+  if (!s.ok()) return s;
   if (!in_range(circle.center, circle.radius)) {
     return fail("circle: centre ", point_text(circle.center), " m plus radius ", decimal(circle.radius),
                 " m reaches beyond ±", decimal(k_max_shape_size), " m");
@@ -393,9 +393,9 @@ GeometryStatus validate_circle(const Circle& circle) {
   return s;
 }
 
-GeometryStatus validate_capsule(const Capsule& capsule) {
-  GeometryStatus s = check_size("capsule", "radius", capsule.radius);
-  if (!s.ok) return s;
+Status validate_capsule(const Capsule& capsule) {
+  Status s = check_size("capsule", "radius", capsule.radius);
+  if (!s.ok()) return s;
   for (const Vec2 c : {capsule.center1, capsule.center2}) {
     if (!in_range(c, capsule.radius)) {
       return fail("capsule: centre ", point_text(c), " m plus radius ", decimal(capsule.radius),
@@ -409,7 +409,7 @@ GeometryStatus validate_capsule(const Capsule& capsule) {
   return s;
 }
 
-GeometryStatus validate_segment(const Segment& segment) {
+Status validate_segment(const Segment& segment) {
   for (const Vec2 p : {segment.point1, segment.point2}) {
     if (!in_range(p, Q32::zero())) {
       return fail("segment: end point ", point_text(p), " m is beyond ±", decimal(k_max_shape_size), " m");
@@ -422,9 +422,9 @@ GeometryStatus validate_segment(const Segment& segment) {
   return {};
 }
 
-GeometryStatus validate_polygon(const Polygon& polygon) {
-  GeometryStatus s = check_convex_vertices(polygon.vertices.data(), polygon.count, polygon.radius);
-  if (!s.ok) return s;
+Status validate_polygon(const Polygon& polygon) {
+  Status s = check_convex_vertices(polygon.vertices.data(), polygon.count, polygon.radius);
+  if (!s.ok()) return s;
   const Polygon expected = build_polygon(polygon.vertices.data(), polygon.count, polygon.radius);
   for (int32_t i = 0; i < polygon.count; ++i) {
     const Vec2 n = polygon.normals[static_cast<size_t>(i)], e = expected.normals[static_cast<size_t>(i)];

@@ -235,8 +235,8 @@ Status world_overlap_circle(WorldId id, const Circle& circle, Transform transfor
                             std::vector<ShapeId>* out) {
   const char* fn = "world_overlap_circle";
   out->clear();
-  const GeometryStatus g = validate_circle(circle);
-  if (!g.ok) return bad_argument(fn, g.message);
+  const Status g = validate_circle(circle);
+  if (!g.ok()) return bad_argument(fn, g.message);
   Status s = check_transform(fn, transform);
   if (!s.ok()) return s;
   return overlap_proxy(id, fn, make_proxy(circle), transform, compute_circle_aabb(circle, transform), filter, out);
@@ -246,8 +246,8 @@ Status world_overlap_capsule(WorldId id, const Capsule& capsule, Transform trans
                              std::vector<ShapeId>* out) {
   const char* fn = "world_overlap_capsule";
   out->clear();
-  const GeometryStatus g = validate_capsule(capsule);
-  if (!g.ok) return bad_argument(fn, g.message);
+  const Status g = validate_capsule(capsule);
+  if (!g.ok()) return bad_argument(fn, g.message);
   Status s = check_transform(fn, transform);
   if (!s.ok()) return s;
   return overlap_proxy(id, fn, make_proxy(capsule), transform, compute_capsule_aabb(capsule, transform), filter,
@@ -258,8 +258,8 @@ Status world_overlap_polygon(WorldId id, const Polygon& polygon, Transform trans
                              std::vector<ShapeId>* out) {
   const char* fn = "world_overlap_polygon";
   out->clear();
-  const GeometryStatus g = validate_polygon(polygon);
-  if (!g.ok) return bad_argument(fn, g.message);
+  const Status g = validate_polygon(polygon);
+  if (!g.ok()) return bad_argument(fn, g.message);
   Status s = check_transform(fn, transform);
   if (!s.ok()) return s;
   return overlap_proxy(id, fn, make_proxy(polygon), transform, compute_polygon_aabb(polygon, transform), filter,

@@ -151,7 +151,7 @@ bool mass_is_computable(const ShapeGeometry& g, Q32 density) {
   return mul_quiet(area_bound, reach2) <= limit && mass_bound <= limit && mul_quiet(mass_bound, reach2) <= limit;
 }
 
-GeometryStatus validate_geometry(const ShapeGeometry& g) {
+Status validate_geometry(const ShapeGeometry& g) {
   switch (g.type) {
     case ShapeType::circle: return validate_circle(g.circle);
     case ShapeType::capsule: return validate_capsule(g.capsule);
@@ -160,8 +160,8 @@ GeometryStatus validate_geometry(const ShapeGeometry& g) {
     case ShapeType::chain_segment:
     case ShapeType::count: break;
   }
-  GeometryStatus s;
-  s.ok = false;
+  Status s;
+  s.code = StatusCode::invalid_argument;
   s.message = "this shape type cannot be created here";
   return s;
 }
@@ -222,8 +222,8 @@ Result<ShapeId> create_shape(BodyId body_id, const ShapeDef& def, const ShapeGeo
   s = validate_shape_def(def, fn);
   if (!s.ok()) return result;
   if (!check_reach(geometry, fn, &s)) return result;
-  const GeometryStatus gs = validate_geometry(geometry);
-  if (!gs.ok) {
+  const Status gs = validate_geometry(geometry);
+  if (!gs.ok()) {
     s = invalid_argument(std::string(fn) + ": " + gs.message);
     return result;
   }
@@ -410,8 +410,8 @@ Status create_chain_shapes(BodyId body_id, const ShapeDef& def, const Vec2* poin
   }
   std::vector<ChainSegment> segments(static_cast<size_t>(count > 0 ? count : 0));
   int32_t segment_count = 0;
-  const GeometryStatus gs = make_chain_segments(points, count, loop, -1, segments.data(), count, &segment_count);
-  if (!gs.ok) return invalid_argument(std::string(fn) + ": " + gs.message);
+  const Status gs = make_chain_segments(points, count, loop, -1, segments.data(), count, &segment_count);
+  if (!gs.ok()) return invalid_argument(std::string(fn) + ": " + gs.message);
   if (w->bodies[static_cast<size_t>(b)].type == BodyType::dynamic_body) {
     // Chain segments add no mass; the body's own mass must still be valid.
     s = check_body_mass_with(*w, b, k_null_index, Q32::zero(), nullptr, std::string(fn) + ": " + describe(body_id));

@@ -76,7 +76,7 @@ const char* shape_kind_name(ShapeKind k) {
   return "unknown";
 }
 
-GeometryStatus validate_shape(const ShapeSpec& s) {
+Status validate_shape(const ShapeSpec& s) {
   switch (s.kind) {
     case ShapeKind::circle: return validate_circle(s.circle);
     case ShapeKind::capsule: return validate_capsule(s.capsule);
@@ -84,12 +84,12 @@ GeometryStatus validate_shape(const ShapeSpec& s) {
     case ShapeKind::polygon: return validate_polygon(s.polygon);
     case ShapeKind::chain: {
       if (s.chain_points.size() > k_max_chain_points)
-        return GeometryStatus{false, "chain has " + std::to_string(s.chain_points.size()) + " points, at most " +
+        return Status{StatusCode::invalid_argument, "chain has " + std::to_string(s.chain_points.size()) + " points, at most " +
                                          std::to_string(k_max_chain_points)};
-      return GeometryStatus{};  // create_chain_shapes checks the rest before creating anything
+      return Status{};  // create_chain_shapes checks the rest before creating anything
     }
   }
-  return GeometryStatus{false, "unknown shape kind " + std::to_string(static_cast<int>(s.kind))};
+  return Status{StatusCode::invalid_argument, "unknown shape kind " + std::to_string(static_cast<int>(s.kind))};
 }
 
 Status attach_shape(BodyId body, const ShapeSpec& s) {
@@ -107,8 +107,8 @@ Status attach_shape(BodyId body, const ShapeSpec& s) {
 
 Status apply_create_body(WorldId world, const Command& c, BodyId* out_created) {
   for (size_t i = 0; i < c.shapes.size(); ++i) {
-    const GeometryStatus g = validate_shape(c.shapes[i]);
-    if (!g.ok) return invalid(c, "shape " + std::to_string(i) + " (" + shape_kind_name(c.shapes[i].kind) + "): " + g.message);
+    const Status g = validate_shape(c.shapes[i]);
+    if (!g.ok()) return invalid(c, "shape " + std::to_string(i) + " (" + shape_kind_name(c.shapes[i].kind) + "): " + g.message);
   }
   Result<BodyId> body = create_body(world, c.body_def);
   if (!body.ok()) return prefixed(c, body.status);

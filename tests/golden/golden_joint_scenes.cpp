@@ -28,16 +28,16 @@ BodyId dyn(SceneContext& c, Vec2 p) { return make_body(c, BodyType::dynamic_body
 
 void box(SceneContext& c, BodyId b, Q32 hw, Q32 hh, Q32 density = Q32::one()) {
   Polygon p;
-  const GeometryStatus g = make_box(hw, hh, &p);
-  if (!g.ok) c.check({StatusCode::invalid_argument, g.message}, "make_box");
+  const Status g = make_box(hw, hh, &p);
+  if (!g.ok()) c.check({StatusCode::invalid_argument, g.message}, "make_box");
   ShapeDef sd = default_shape_def();
   sd.density = density;
   c.check(create_polygon_shape(b, sd, p).status, "create_polygon_shape");
 }
 void offset_box(SceneContext& c, BodyId b, Q32 hw, Q32 hh, Vec2 center) {
   Polygon p;
-  const GeometryStatus g = make_offset_box(hw, hh, center, Q32::zero(), Q32::zero(), &p);
-  if (!g.ok) c.check({StatusCode::invalid_argument, g.message}, "make_offset_box");
+  const Status g = make_offset_box(hw, hh, center, Q32::zero(), Q32::zero(), &p);
+  if (!g.ok()) c.check({StatusCode::invalid_argument, g.message}, "make_offset_box");
   c.check(create_polygon_shape(b, default_shape_def(), p).status, "create_polygon_shape");
 }
 void circle(SceneContext& c, BodyId b, Q32 r, Q32 density = Q32::one()) {

@@ -54,15 +54,15 @@ BodyId dyn(SceneContext& c, Vec2 position, Q32 angle = Q32::zero(), Vec2 velocit
 
 ShapeId add_box(SceneContext& c, BodyId b, Q32 hw, Q32 hh, const ShapeDef& sd = mat()) {
   Polygon p;
-  const GeometryStatus g = make_box(hw, hh, &p);
-  if (!g.ok) c.check({StatusCode::invalid_argument, g.message}, "make_box");
+  const Status g = make_box(hw, hh, &p);
+  if (!g.ok()) c.check({StatusCode::invalid_argument, g.message}, "make_box");
   return c.value(create_polygon_shape(b, sd, p), "create_polygon_shape(box)");
 }
 ShapeId add_offset_box(SceneContext& c, BodyId b, Q32 hw, Q32 hh, Vec2 center, Q32 angle, Q32 radius,
                        const ShapeDef& sd = mat()) {
   Polygon p;
-  const GeometryStatus g = make_offset_box(hw, hh, center, angle, radius, &p);
-  if (!g.ok) c.check({StatusCode::invalid_argument, g.message}, "make_offset_box");
+  const Status g = make_offset_box(hw, hh, center, angle, radius, &p);
+  if (!g.ok()) c.check({StatusCode::invalid_argument, g.message}, "make_offset_box");
   return c.value(create_polygon_shape(b, sd, p), "create_polygon_shape(offset box)");
 }
 /// A regular-ish polygon with `n` vertices on a circle of radius r (exact
@@ -74,8 +74,8 @@ ShapeId add_ngon(SceneContext& c, BodyId b, int32_t n, Q32 r, Q32 radius = Q32::
     pts[static_cast<size_t>(i)] = {r * rot.c, r * rot.s};
   }
   Polygon p;
-  const GeometryStatus g = make_polygon_from_points(pts.data(), n, radius, &p);
-  if (!g.ok) c.check({StatusCode::invalid_argument, g.message}, "make_polygon_from_points");
+  const Status g = make_polygon_from_points(pts.data(), n, radius, &p);
+  if (!g.ok()) c.check({StatusCode::invalid_argument, g.message}, "make_polygon_from_points");
   return c.value(create_polygon_shape(b, sd, p), "create_polygon_shape(ngon)");
 }
 ShapeId add_circle(SceneContext& c, BodyId b, Q32 r, Vec2 center = {}, const ShapeDef& sd = mat()) {
@@ -464,7 +464,7 @@ void build_random_mix(SceneContext& c) {
                                           Q32::from_raw(static_cast<int64_t>(s >> 32) - (int64_t{1} << 31)));
         }
         Polygon poly;
-        if (make_polygon_from_points(pts.data(), n, 0_q32, &poly).ok) {
+        if (make_polygon_from_points(pts.data(), n, 0_q32, &poly).ok()) {
           c.check(create_polygon_shape(b, sd, poly).status, "create_polygon_shape(random)");
         } else {
           add_box(c, b, q(2, 5), q(1, 5), sd);  // degenerate hull: a box instead (same on every platform)

@@ -369,7 +369,7 @@ TEST_CASE("gravity scale 0 floats, fixed rotation never turns", "[physics][body]
   def.fixed_rotation = true;
   const BodyId fixed = create_body(w.id, def).value;
   Polygon box;
-  REQUIRE(make_box(1_q32, 0.5_q32, &box).ok);
+  REQUIRE(make_box(1_q32, 0.5_q32, &box).ok());
   REQUIRE(create_polygon_shape(fixed, default_shape_def(), box).ok());
   CHECK(body_is_fixed_rotation(fixed));
   CHECK(body_rotational_inertia(fixed) > 0_q32);  // reported, but not used
@@ -413,7 +413,7 @@ TEST_CASE("a static body never moves", "[physics][body]") {
   ScopedWorld w;
   const BodyId ground = make_body(w.id, BodyType::static_body, vec2(0, -1));
   Polygon box;
-  REQUIRE(make_box(10_q32, 1_q32, &box).ok);
+  REQUIRE(make_box(10_q32, 1_q32, &box).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), box).ok());
   const Status s = body_set_linear_velocity(ground, vec2(1, 0));
   CHECK(contains(s.message, "is static"));

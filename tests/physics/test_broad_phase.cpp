@@ -111,7 +111,7 @@ void add_random_body(WorldId id, std::mt19937_64& rng, int64_t half_extent_m) {
       Polygon box;
       REQUIRE(make_offset_box(random_q32(rng, 0, 1) + 0.1_q32, random_q32(rng, 0, 1) + 0.1_q32, offset,
                               random_q32(rng, -3, 3), Q32::zero(), &box)
-                  .ok);
+                  .ok());
       r = create_polygon_shape(body.value, sd, box);
     } else if (geometry < 9) {
       Capsule cap{offset, offset + Vec2{random_q32(rng, 0, 1) + 0.1_q32, random_q32(rng, -1, 1)}, 0.2_q32};
@@ -132,7 +132,7 @@ void build_random_scene(WorldId id, std::mt19937_64& rng, int n, int64_t half_ex
   Result<BodyId> g = create_body(id, gd);
   REQUIRE(g.ok());
   Polygon ground;
-  REQUIRE(make_box(Q32::from_int(half_extent_m * 4 + 50), 1_q32, &ground).ok);
+  REQUIRE(make_box(Q32::from_int(half_extent_m * 4 + 50), 1_q32, &ground).ok());
   REQUIRE(create_polygon_shape(g.value, default_shape_def(), ground).ok());
   for (int i = 0; i < n; ++i) add_random_body(id, rng, half_extent_m);
 }
@@ -339,7 +339,7 @@ TEST_CASE("broad phases agree on crowded grids and at the world's corners", "[ph
       Result<BodyId> g = create_body(w.id, gd);
       REQUIRE(g.ok());
       Polygon box;
-      REQUIRE(make_box(40_q32, 1.5_q32, &box).ok);
+      REQUIRE(make_box(40_q32, 1.5_q32, &box).ok());
       REQUIRE(create_polygon_shape(g.value, default_shape_def(), box).ok());
       broad_phase_update_pairs(find_world(w.id));
       const std::vector<uint64_t> keys = pair_keys(w.id);

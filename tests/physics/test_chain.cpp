@@ -12,8 +12,8 @@ TEST_CASE("open chains: first and last points are ghosts", "[physics][chain]") {
   const std::array<Vec2, 5> pts{{{Q32(-3), 1_q32}, {Q32(-2), 0_q32}, {0_q32, 0_q32}, {2_q32, 0_q32}, {3_q32, 1_q32}}};
   std::array<ChainSegment, 8> segs{};
   int32_t n = 0;
-  const GeometryStatus s = make_chain_segments(pts.data(), 5, false, 7, segs.data(), 8, &n);
-  REQUIRE(s.ok);
+  const Status s = make_chain_segments(pts.data(), 5, false, 7, segs.data(), 8, &n);
+  REQUIRE(s.ok());
   REQUIRE(n == 2);
   CHECK(segs[0].ghost1 == pts[0]);
   CHECK(segs[0].segment.point1 == pts[1]);
@@ -29,7 +29,7 @@ TEST_CASE("loops wrap their ghosts", "[physics][chain]") {
   const std::array<Vec2, 4> square{{{0_q32, 0_q32}, {1_q32, 0_q32}, {1_q32, 1_q32}, {0_q32, 1_q32}}};
   std::array<ChainSegment, 4> segs{};
   int32_t n = 0;
-  REQUIRE(make_chain_segments(square.data(), 4, true, 0, segs.data(), 4, &n).ok);
+  REQUIRE(make_chain_segments(square.data(), 4, true, 0, segs.data(), 4, &n).ok());
   REQUIRE(n == 4);
   CHECK(segs[0].ghost1 == square[3]);
   CHECK(segs[3].segment.point1 == square[3]);
@@ -41,17 +41,17 @@ TEST_CASE("bad chains are rejected with a message", "[physics][chain]") {
   std::array<ChainSegment, 8> segs{};
   int32_t n = -1;
   const std::array<Vec2, 3> three{{{0_q32, 0_q32}, {1_q32, 0_q32}, {2_q32, 0_q32}}};
-  GeometryStatus s = make_chain_segments(three.data(), 3, false, 0, segs.data(), 8, &n);
-  CHECK_FALSE(s.ok);
+  Status s = make_chain_segments(three.data(), 3, false, 0, segs.data(), 8, &n);
+  CHECK_FALSE(s.ok());
   CHECK(n == 0);
   CHECK(s.message == "chain: an open chain needs at least 4 points, got 3 (the first and last points are ghost vertices only)");
   const std::array<Vec2, 4> dup{{{0_q32, 0_q32}, {1_q32, 0_q32}, {1.001_q32, 0_q32}, {2_q32, 0_q32}}};
   s = make_chain_segments(dup.data(), 4, false, 0, segs.data(), 8, &n);
-  CHECK_FALSE(s.ok);
+  CHECK_FALSE(s.ok());
   CHECK(s.message.rfind("chain: points 1 and 2 are 0.00099", 0) == 0);
   const std::array<Vec2, 4> square{{{0_q32, 0_q32}, {1_q32, 0_q32}, {1_q32, 1_q32}, {0_q32, 1_q32}}};
   s = make_chain_segments(square.data(), 4, true, 0, segs.data(), 2, &n);
-  CHECK_FALSE(s.ok);
+  CHECK_FALSE(s.ok());
   CHECK(s.message == "chain: 4 segments do not fit the output capacity of 2");
 }
 
@@ -62,10 +62,10 @@ TEST_CASE("a box sliding along a flat built chain never catches an inner vertex"
   for (int i = 0; i < 11; ++i) pts[static_cast<size_t>(i)] = Vec2{Q32(5 - i), 0_q32};
   std::array<ChainSegment, 16> segs{};
   int32_t n = 0;
-  REQUIRE(make_chain_segments(pts.data(), 11, false, 0, segs.data(), 16, &n).ok);
+  REQUIRE(make_chain_segments(pts.data(), 11, false, 0, segs.data(), 16, &n).ok());
   REQUIRE(n == 8);
   Polygon box;
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok);
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
   ShapeGeometry ground;
   ground.type = ShapeType::chain_segment;
   ShapeGeometry body;

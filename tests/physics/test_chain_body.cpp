@@ -90,7 +90,7 @@ BodyId add_ball(WorldId w, Vec2 center, Q32 radius, Vec2 velocity = {}) {
 BodyId add_box(WorldId w, Vec2 center, Q32 half, ShapeDef sd = default_shape_def(), Vec2 velocity = {}) {
   const BodyId b = add_body(w, BodyType::dynamic_body, center, velocity);
   Polygon box;
-  REQUIRE(make_box(half, half, &box).ok);
+  REQUIRE(make_box(half, half, &box).ok());
   REQUIRE(create_polygon_shape(b, sd, box).ok());
   return b;
 }
@@ -129,9 +129,9 @@ TEST_CASE("create_chain_shapes refuses bad chains with make_chain_segments' mess
   for (const Case& c : cases) {
     std::vector<ChainSegment> segs(16);
     int32_t n = -1;
-    const GeometryStatus expected =
+    const Status expected =
         make_chain_segments(c.points.data(), static_cast<int32_t>(c.points.size()), c.loop, 0, segs.data(), 16, &n);
-    REQUIRE_FALSE(expected.ok);
+    REQUIRE_FALSE(expected.ok());
     std::vector<ShapeId> out = sentinel;
     const Status s =
         create_chain_shapes(ground, default_shape_def(), c.points.data(), static_cast<int32_t>(c.points.size()), c.loop, &out);

@@ -38,7 +38,7 @@ BodyId make_body(WorldId w, BodyType type, Vec2 p) {
 
 ShapeId box_shape(BodyId b, Q32 hw, Q32 hh, ShapeDef sd = default_shape_def()) {
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   Result<ShapeId> r = create_polygon_shape(b, sd, box);
   REQUIRE(r.ok());
   return r.value;

@@ -22,7 +22,7 @@ BodyId add_box_body(WorldId w, BodyType type, Vec2 center, Q32 hw, Q32 hh, Shape
   const Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   REQUIRE(create_polygon_shape(b.value, sd, box).ok());
   return b.value;
 }
@@ -105,7 +105,7 @@ TEST_CASE("a thin stick falling flat at 200 m/s does not pass through the ground
   const Result<BodyId> stick = create_body(w.id, stick_def);
   REQUIRE(stick.ok());
   Polygon box;
-  REQUIRE(make_box(0.5_q32, 0.02_q32, &box).ok);
+  REQUIRE(make_box(0.5_q32, 0.02_q32, &box).ok());
   REQUIRE(create_polygon_shape(stick.value, default_shape_def(), box).ok());
   long double lowest = 10;
   for (int i = 0; i < 120; ++i) {

@@ -54,7 +54,7 @@ ShapeProxy random_proxy(std::mt19937_64& rng) {
     for (int i = 0; i < n; ++i) pts.push_back(draw_v(rng, -size, size));
     Polygon p;
     const Q32 r = kind == 3 ? draw_q(rng, 0.005L, size / 3) : Q32::zero();
-    if (make_polygon_from_points(pts.data(), n, r, &p).ok) return make_proxy(p);
+    if (make_polygon_from_points(pts.data(), n, r, &p).ok()) return make_proxy(p);
   }
 }
 
@@ -116,7 +116,7 @@ DistanceOutput dist(const ShapeProxy& a, Transform xa, const ShapeProxy& b, Tran
 
 Polygon box(long double hw, long double hh) {
   Polygon p;
-  REQUIRE(make_box(q(hw), q(hh), &p).ok);
+  REQUIRE(make_box(q(hw), q(hh), &p).ok());
   return p;
 }
 
@@ -181,7 +181,7 @@ TEST_CASE("shape_distance: boxes and points", "[physics]") {
       [] {
         Polygon p;
         const Vec2 pts[3] = {vec2(0, 0), vec2(4, 0), vec2(0, 3)};
-        REQUIRE(make_polygon_from_points(pts, 3, Q32::zero(), &p).ok);
+        REQUIRE(make_polygon_from_points(pts, 3, Q32::zero(), &p).ok());
         return p;
       }());
   const Vec2 origin{};

@@ -31,7 +31,7 @@ ShapeId add_static_box(WorldId w, Vec2 center, Q32 hw, Q32 hh, ShapeDef sd = def
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   Result<ShapeId> s = create_polygon_shape(b.value, sd, box);
   REQUIRE(s.ok());
   return s.value;
@@ -368,14 +368,14 @@ TEST_CASE("move events say when a body fell asleep", "[physics][events][sleep]")
   ScopedWorld w;
   BodyId ground = create_body(w.id, default_body_def()).value;
   Polygon ground_box;
-  REQUIRE(make_offset_box(10_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok);
+  REQUIRE(make_offset_box(10_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), ground_box).ok());
   BodyDef bd = default_body_def();
   bd.type = BodyType::dynamic_body;
   bd.position = {0_q32, 1_q32};
   const BodyId box = create_body(w.id, bd).value;
   Polygon square;
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &square).ok);
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &square).ok());
   REQUIRE(create_polygon_shape(box, default_shape_def(), square).ok());
   int slept_at = -1, reported_at = -1;
   for (int tick = 1; tick <= 300 && slept_at < 0; ++tick) {

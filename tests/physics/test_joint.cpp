@@ -57,7 +57,7 @@ BodyId add_box(WorldId w, Vec2 p, Q32 hx, Q32 hy, Q32 density, bool sleep = true
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hx, hy, &box).ok);
+  REQUIRE(make_box(hx, hy, &box).ok());
   ShapeDef sd = default_shape_def();
   sd.density = density;
   REQUIRE(create_polygon_shape(b.value, sd, box).ok());
@@ -369,11 +369,11 @@ TEST_CASE("joint: ragdolls piled in a box for 20 s stay together and inside", "[
   // The box: 8 m wide, walls 10 m high.
   const BodyId box = add_static(world.id);
   Polygon wall;
-  REQUIRE(make_offset_box(5_q32, 0.5_q32, Vec2{0_q32, -0.5_q32}, 0_q32, 0_q32, &wall).ok);
+  REQUIRE(make_offset_box(5_q32, 0.5_q32, Vec2{0_q32, -0.5_q32}, 0_q32, 0_q32, &wall).ok());
   REQUIRE(create_polygon_shape(box, default_shape_def(), wall).ok());
-  REQUIRE(make_offset_box(0.5_q32, 6_q32, Vec2{-4.5_q32, 6_q32}, 0_q32, 0_q32, &wall).ok);
+  REQUIRE(make_offset_box(0.5_q32, 6_q32, Vec2{-4.5_q32, 6_q32}, 0_q32, 0_q32, &wall).ok());
   REQUIRE(create_polygon_shape(box, default_shape_def(), wall).ok());
-  REQUIRE(make_offset_box(0.5_q32, 6_q32, Vec2{4.5_q32, 6_q32}, 0_q32, 0_q32, &wall).ok);
+  REQUIRE(make_offset_box(0.5_q32, 6_q32, Vec2{4.5_q32, 6_q32}, 0_q32, 0_q32, &wall).ok());
   REQUIRE(create_polygon_shape(box, default_shape_def(), wall).ok());
 
   struct Link {

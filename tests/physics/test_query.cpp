@@ -42,7 +42,7 @@ struct Scene {
     REQUIRE(r.ok());
     world = r.value;
     Polygon box;
-    REQUIRE(make_box(1_q32, 1_q32, &box).ok);
+    REQUIRE(make_box(1_q32, 1_q32, &box).ok());
     const Circle circle{{}, 1_q32};
     ShapeDef sd = default_shape_def();
     a = add_static(world, {0_q32, 0_q32}, sd, &box, nullptr);
@@ -140,7 +140,7 @@ TEST_CASE("equal-fraction ray hits are ordered by shape index", "[physics][query
   Result<WorldId> r = create_world(default_world_def());
   REQUIRE(r.ok());
   Polygon box;
-  REQUIRE(make_box(1_q32, 1_q32, &box).ok);
+  REQUIRE(make_box(1_q32, 1_q32, &box).ok());
   // Two identical boxes at the same place: same fraction, index decides.
   const ShapeId first = add_static(r.value, {3_q32, 0_q32}, default_shape_def(), &box, nullptr);
   const ShapeId second = add_static(r.value, {3_q32, 0_q32}, default_shape_def(), &box, nullptr);
@@ -204,7 +204,7 @@ TEST_CASE("AABB, point and shape overlap queries", "[physics][query]") {
   // overlaps the circle (surface at x = 4); at x = 3.2 it reaches 3.907 and
   // does not, though its bounds [2.49, 3.91] touch nothing either way but B's.
   Polygon small;
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &small).ok);
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &small).ok());
   const Rot turn = rot_from_angle(Q32::from_raw((k_pi.raw + 2) / 4));
   REQUIRE(world_overlap_polygon(s.world, small, {{3.5_q32, 0_q32}, turn}, QueryFilter{}, &out).ok());
   REQUIRE(out.size() == 1);

@@ -20,7 +20,7 @@ Q32 readme_example() {
   BodyDef ground_def = default_body_def();           // static by default
   BodyId ground = create_body(world, ground_def).value;
   Polygon ground_box;
-  make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);  // top face at y = 0
+  check(make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box));  // top face at y = 0
   check(create_polygon_shape(ground, default_shape_def(), ground_box).status);
 
   BodyDef ball_def = default_body_def();
@@ -64,7 +64,7 @@ void readme_events_example() {
   WorldId world = create_world(default_world_def()).value;
   BodyId ground = create_body(world, default_body_def()).value;
   Polygon ground_box;
-  make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
+  REQUIRE(make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), ground_box).ok());
   BodyDef ball_def = default_body_def();
   ball_def.type = BodyType::dynamic_body;

@@ -76,7 +76,7 @@ CirclesScene make_circles(WorldId w, int n) {
     Result<BodyId> b = create_body(w, def);
     REQUIRE(b.ok());
     Polygon box;
-    REQUIRE(make_box(q(hx), q(hy), &box).ok);
+    REQUIRE(make_box(q(hx), q(hy), &box).ok());
     REQUIRE(create_polygon_shape(b.value, sd, box).ok());
   };
   add_wall(0, -side / 2 - wall, side / 2 + 2 * wall, wall);

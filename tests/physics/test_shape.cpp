@@ -104,7 +104,7 @@ Polygon random_polygon(std::mt19937_64& rng, long double size, bool rounded) {
     for (int i = 0; i < n; ++i) pts.push_back(c + draw_v(rng, -size, size));
     const Q32 r = rounded ? draw_q(rng, 0.005L, size / 2) : Q32::zero();
     Polygon p;
-    if (make_polygon_from_points(pts.data(), n, r, &p).ok) return p;
+    if (make_polygon_from_points(pts.data(), n, r, &p).ok()) return p;
   }
 }
 
@@ -116,7 +116,7 @@ Polygon random_polygon(std::mt19937_64& rng, long double size, bool rounded) {
 
 TEST_CASE("polygon mass: boxes have exact closed forms", "[physics]") {
   Polygon box;
-  REQUIRE(make_box(q(0.5L), Q32::one(), &box).ok);  // 1 × 2 m
+  REQUIRE(make_box(q(0.5L), Q32::one(), &box).ok());  // 1 × 2 m
   MassData m = compute_polygon_mass(box, Q32::one());
   CHECK(m.mass == vec2(2, 0).x);
   CHECK(m.center == vec2(0, 0));
@@ -124,14 +124,14 @@ TEST_CASE("polygon mass: boxes have exact closed forms", "[physics]") {
   CHECK(raw_diff(m.rotational_inertia, 10.0L / 12) <= 2);
 
   Polygon ob;
-  REQUIRE(make_offset_box(q(1.5L), q(0.5L), vec2(2, -1), Q32::zero(), Q32::zero(), &ob).ok);  // 3 × 1 m
+  REQUIRE(make_offset_box(q(1.5L), q(0.5L), vec2(2, -1), Q32::zero(), Q32::zero(), &ob).ok());  // 3 × 1 m
   m = compute_polygon_mass(ob, q(2.5L));
   CHECK(m.mass == q(7.5L));
   CHECK(m.center == vec2(2, -1));
   CHECK(raw_diff(m.rotational_inertia, 7.5L * 10 / 12) <= 4);
 
   // Rotating the box moves its vertices by rounding only.
-  REQUIRE(make_offset_box(q(1.5L), q(0.5L), vec2(2, -1), q(0.3L), Q32::zero(), &ob).ok);
+  REQUIRE(make_offset_box(q(1.5L), q(0.5L), vec2(2, -1), q(0.3L), Q32::zero(), &ob).ok());
   m = compute_polygon_mass(ob, q(2.5L));
   CHECK(raw_diff(m.mass, 7.5L) <= 64);
   CHECK(raw_diff(m.center.x, 2) <= 4);
@@ -143,7 +143,7 @@ TEST_CASE("polygon mass: rounded box against its closed form", "[physics]") {
   // Core w × h, radius r: core + 4 edge rectangles + 4 quarter discs.
   const long double w = 2, h = 1, r = 0.25L, rho = 3;
   Polygon p;
-  REQUIRE(make_offset_box(q(w / 2), q(h / 2), vec2(0, 0), Q32::zero(), q(r), &p).ok);
+  REQUIRE(make_offset_box(q(w / 2), q(h / 2), vec2(0, 0), Q32::zero(), q(r), &p).ok());
   const MassData m = compute_polygon_mass(p, q(rho));
   const long double area = w * h + 2 * (w + h) * r + k_pi_ld * r * r;
   long double j = w * h * (w * w + h * h) / 12;
@@ -217,7 +217,7 @@ TEST_CASE("circle and capsule mass against closed forms", "[physics]") {
     const Vec2 c1 = draw_v(rng, -5, 5);
     const Vec2 c2 = c1 + draw_v(rng, -3, 3);
     const Capsule cap{c1, c2, r};
-    if (!validate_capsule(cap).ok) continue;
+    if (!validate_capsule(cap).ok()) continue;
     m = compute_capsule_mass(cap, density);
     const long double dx = ld(c2.x) - ld(c1.x), dy = ld(c2.y) - ld(c1.y);
     const long double len = std::sqrt(dx * dx + dy * dy), rl = ld(r), hh = len / 2;
@@ -244,7 +244,7 @@ TEST_CASE("AABBs of every shape under a transform", "[physics]") {
   CHECK(compute_circle_aabb({vec2(1, 2), q(0.5L)}, xf) == AABB{v(7.5L, 0.5L), v(8.5L, 1.5L)});
   CHECK(compute_capsule_aabb({vec2(0, 0), vec2(2, 0), q(0.25L)}, xf) == AABB{v(9.75L, -0.25L), v(10.25L, 2.25L)});
   Polygon box;
-  REQUIRE(make_offset_box(Q32::one(), q(0.5L), vec2(0, 0), Q32::zero(), q(0.1L), &box).ok);
+  REQUIRE(make_offset_box(Q32::one(), q(0.5L), vec2(0, 0), Q32::zero(), q(0.1L), &box).ok());
   CHECK(compute_polygon_aabb(box, xf) == AABB{v(9.4L, -1.1L), v(10.6L, 1.1L)});
   const Segment seg{vec2(0, 0), vec2(1, 1)};
   CHECK(compute_segment_aabb(seg, xf) == AABB{vec2(9, 0), vec2(10, 1)});
@@ -253,7 +253,7 @@ TEST_CASE("AABBs of every shape under a transform", "[physics]") {
   // Identity: a triangle's bounds are its extreme vertices.
   Polygon tri;
   const Vec2 pts[3] = {v(-1, 0.5L), v(2, -0.25L), v(0.5L, 3)};
-  REQUIRE(make_polygon_from_points(pts, 3, Q32::zero(), &tri).ok);
+  REQUIRE(make_polygon_from_points(pts, 3, Q32::zero(), &tri).ok());
   CHECK(compute_polygon_aabb(tri, transform_identity()) == AABB{v(-1, -0.25L), v(2, 3)});
 }
 
@@ -271,12 +271,12 @@ TEST_CASE("point tests", "[physics]") {
   CHECK_FALSE(point_in_capsule(v(1.4L, 0.4L), cap));
 
   Polygon box;
-  REQUIRE(make_box(Q32::one(), Q32::one(), &box).ok);
+  REQUIRE(make_box(Q32::one(), Q32::one(), &box).ok());
   CHECK(point_in_polygon(vec2(1, 1), box));
   CHECK(point_in_polygon(v(0.3L, -0.9L), box));
   CHECK_FALSE(point_in_polygon({Q32::one() + Q32::epsilon(), Q32::zero()}, box));
   Polygon rounded;
-  REQUIRE(make_offset_box(Q32::one(), Q32::one(), vec2(0, 0), Q32::zero(), q(0.5L), &rounded).ok);
+  REQUIRE(make_offset_box(Q32::one(), Q32::one(), vec2(0, 0), Q32::zero(), q(0.5L), &rounded).ok());
   CHECK(point_in_polygon(v(1.3L, 1.3L), rounded));
   CHECK_FALSE(point_in_polygon(v(1.4L, 1.4L), rounded));
   CHECK(point_in_polygon(v(1.5L, 0), rounded));
@@ -321,7 +321,7 @@ TEST_CASE("ray casts with known answers", "[physics]") {
   }
   SECTION("polygon") {
     Polygon box;
-    REQUIRE(make_box(Q32::one(), Q32::one(), &box).ok);
+    REQUIRE(make_box(Q32::one(), Q32::one(), &box).ok());
     CastOutput o = ray_cast_polygon(ray(-3, 0.5L, 4, 0), box);
     REQUIRE(o.hit);
     CHECK(o.fraction == q(0.5L));  // exact
@@ -337,7 +337,7 @@ TEST_CASE("ray casts with known answers", "[physics]") {
     CHECK_FALSE(ray_cast_polygon(ray(-3, 0, 1.9L, 0), box).hit);  // short
     // Rounded box ±1, radius 0.5.
     Polygon rb;
-    REQUIRE(make_offset_box(Q32::one(), Q32::one(), vec2(0, 0), Q32::zero(), q(0.5L), &rb).ok);
+    REQUIRE(make_offset_box(Q32::one(), Q32::one(), vec2(0, 0), Q32::zero(), q(0.5L), &rb).ok());
     o = ray_cast_polygon(ray(-3, 0, 4, 0), rb);
     REQUIRE(o.hit);
     CHECK(raw_diff(o.fraction, 0.375L) <= 2);
@@ -404,14 +404,14 @@ TEST_CASE("ray casts agree with shape_distance on random shapes", "[physics]") {
       proxy = make_proxy(circle);
     } else if (kind == 1) {
       capsule = {draw_v(rng, -2, 2), draw_v(rng, -2, 2), draw_q(rng, 0.05L, 1)};
-      if (!validate_capsule(capsule).ok) continue;
+      if (!validate_capsule(capsule).ok()) continue;
       proxy = make_proxy(capsule);
     } else if (kind == 2 || kind == 3) {
       polygon = random_polygon(rng, 0.2L + static_cast<long double>(rng() % 20) / 10, kind == 3);
       proxy = make_proxy(polygon);
     } else {
       segment = {draw_v(rng, -2, 2), draw_v(rng, -2, 2)};
-      if (!validate_segment(segment).ok) continue;
+      if (!validate_segment(segment).ok()) continue;
       proxy = make_proxy(segment);
     }
     RayCastInput in;

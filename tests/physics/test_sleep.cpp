@@ -27,7 +27,7 @@ BodyId add_ground(WorldId w) {
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(100_q32, 1_q32, &box).ok);
+  REQUIRE(make_box(100_q32, 1_q32, &box).ok());
   REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
   return b.value;
 }
@@ -41,7 +41,7 @@ BodyId add_box(WorldId w, Vec2 center, Q32 half = Q32::from_ratio(1, 2), BodyTyp
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(half, half, &box).ok);
+  REQUIRE(make_box(half, half, &box).ok());
   REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
   return b.value;
 }
@@ -257,7 +257,7 @@ TEST_CASE("destroying, moving or reshaping a touching body wakes sleepers", "[ph
   CHECK(all_awake(stack2));
 
   Polygon box;
-  REQUIRE(make_box(0.25_q32, 0.25_q32, &box).ok);
+  REQUIRE(make_box(0.25_q32, 0.25_q32, &box).ok());
   REQUIRE(create_polygon_shape(stack3[1], default_shape_def(), box).ok());
   CHECK(all_awake(stack3));
   CHECK(all_asleep(stack4));
@@ -374,7 +374,7 @@ TEST_CASE("a body created asleep hangs in the air until something touches it", "
   Result<BodyId> b = create_body(w.id, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok);
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
   REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());  // a lone sleeper stays asleep
   CHECK(!body_is_awake(b.value));
   for (int i = 0; i < 60; ++i) REQUIRE(world_step(w.id, k_dt).ok());

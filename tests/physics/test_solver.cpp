@@ -35,7 +35,7 @@ BodyId add_static_box(WorldId w, Vec2 center, Q32 hw, Q32 hh, Q32 angle = {}, Sh
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   REQUIRE(create_polygon_shape(b.value, sd, box).ok());
   return b.value;
 }
@@ -53,7 +53,7 @@ BodyId add_dynamic_box(WorldId w, Vec2 center, Q32 hw, Q32 hh, ShapeDef sd = def
   Result<BodyId> b = create_body(w, def);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   REQUIRE(create_polygon_shape(b.value, sd, box).ok());
   return b.value;
 }

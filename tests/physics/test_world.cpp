@@ -390,7 +390,7 @@ TEST_CASE("shape bounds follow the body after a step", "[physics][world]") {
   REQUIRE(body_set_angular_velocity(body, 2_q32).ok());
   const ShapeId circle = add_circle(body, 0.5_q32, vec2(1, 0));
   Polygon box;
-  REQUIRE(make_box(0.5_q32, 0.25_q32, &box).ok);
+  REQUIRE(make_box(0.5_q32, 0.25_q32, &box).ok());
   const Result<ShapeId> boxed = create_polygon_shape(body, default_shape_def(), box);
   REQUIRE(boxed.ok());
   for (int k = 0; k < 5; ++k) REQUIRE(world_step(w.id, k_dt).ok());
@@ -451,7 +451,7 @@ std::vector<BodyId> build_random_scene(WorldId world, uint64_t seed) {
       case 0: REQUIRE(create_circle_shape(r.value, sd, Circle{{raw_in(-one, one), 0_q32}, raw_in(one / 10, one)}).ok()); break;
       case 1: {
         Polygon box;
-        REQUIRE(make_box(raw_in(one / 10, one), raw_in(one / 10, one), &box).ok);
+        REQUIRE(make_box(raw_in(one / 10, one), raw_in(one / 10, one), &box).ok());
         REQUIRE(create_polygon_shape(r.value, sd, box).ok());
         break;
       }
@@ -586,7 +586,7 @@ TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "
     Result<BodyId> g = create_body(w.id, gd);
     REQUIRE(g.ok());
     Polygon ground;
-    REQUIRE(make_box(30_q32, 1_q32, &ground).ok);
+    REQUIRE(make_box(30_q32, 1_q32, &ground).ok());
     REQUIRE(create_polygon_shape(g.value, default_shape_def(), ground).ok());
   }
   for (int k = 0; k < 30; ++k) {
@@ -595,7 +595,7 @@ TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "
       add_circle(b, 0.4_q32);
     } else {
       Polygon box;
-      REQUIRE(make_box(0.4_q32, 0.3_q32, &box).ok);
+      REQUIRE(make_box(0.4_q32, 0.3_q32, &box).ok());
       REQUIRE(create_polygon_shape(b, default_shape_def(), box).ok());
     }
   }

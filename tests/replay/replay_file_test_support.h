@@ -28,7 +28,7 @@ struct OwnedWorld : UniqueWorld {
 inline ShapeSpec box_spec(Q32 hw, Q32 hh) {
   ShapeSpec s;
   s.kind = ShapeKind::polygon;
-  REQUIRE(make_box(hw, hh, &s.polygon).ok);
+  REQUIRE(make_box(hw, hh, &s.polygon).ok());
   return s;
 }
 

@@ -46,7 +46,7 @@ inline BodyId add_body(WorldId w, BodyType type, Vec2 p, Q32 angle = Q32::zero()
 
 inline ShapeId add_box(BodyId b, Q32 hw, Q32 hh, const ShapeDef& sd = default_shape_def()) {
   Polygon poly;
-  REQUIRE(make_box(hw, hh, &poly).ok);
+  REQUIRE(make_box(hw, hh, &poly).ok());
   Result<ShapeId> s = create_polygon_shape(b, sd, poly);
   REQUIRE(s.ok());
   return s.value;

@@ -56,7 +56,7 @@ std::vector<Command> every_command() {
   segment.segment = {{-1_q32, 0_q32}, {1_q32, Q32::from_raw(1)}};
   shapes.push_back(segment);
   Polygon poly;
-  REQUIRE(make_offset_box(0.5_q32, 0.25_q32, {0.1_q32, 0.2_q32}, 0.3_q32, 0.05_q32, &poly).ok);
+  REQUIRE(make_offset_box(0.5_q32, 0.25_q32, {0.1_q32, 0.2_q32}, 0.3_q32, 0.05_q32, &poly).ok());
   ShapeSpec polygon;
   polygon.kind = ShapeKind::polygon;
   polygon.polygon = poly;

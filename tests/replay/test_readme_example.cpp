@@ -23,7 +23,7 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
   BodyDef ground_def = default_body_def();
   BodyId ground = create_body(world, ground_def).value;
   Polygon ground_box;
-  REQUIRE(make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok);
+  REQUIRE(make_offset_box(20_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), ground_box).ok());
   BodyDef ball_def = default_body_def();
   ball_def.type = BodyType::dynamic_body;

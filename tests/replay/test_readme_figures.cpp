@@ -37,7 +37,7 @@ BodyId pile_body(WorldId w, BodyType type, Vec2 p) {
 
 void pile_box(BodyId b, Q32 hw, Q32 hh) {
   Polygon poly;
-  REQUIRE(make_box(hw, hh, &poly).ok);
+  REQUIRE(make_box(hw, hh, &poly).ok());
   REQUIRE(create_polygon_shape(b, default_shape_def(), poly).ok());
 }
 

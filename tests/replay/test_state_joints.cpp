@@ -35,7 +35,7 @@ WorldId make_joint_world(std::vector<JointId>* out_joints) {
   WorldId w = create_world(default_world_def()).value;
   BodyId ground = create_body(w, default_body_def()).value;
   Polygon floor;
-  REQUIRE(make_offset_box(20_q32, 0.5_q32, Vec2{0_q32, -8_q32}, 0_q32, 0_q32, &floor).ok);
+  REQUIRE(make_offset_box(20_q32, 0.5_q32, Vec2{0_q32, -8_q32}, 0_q32, 0_q32, &floor).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), floor).ok());
   BodyId prev = ground;
   for (int i = 0; i < 6; ++i) {
@@ -44,7 +44,7 @@ WorldId make_joint_world(std::vector<JointId>* out_joints) {
     bd.position = Vec2{Q32::from_int(i) + 0.5_q32, 0_q32};
     BodyId b = create_body(w, bd).value;
     Polygon box;
-    REQUIRE(make_box(0.5_q32, 0.1_q32, &box).ok);
+    REQUIRE(make_box(0.5_q32, 0.1_q32, &box).ok());
     REQUIRE(create_polygon_shape(b, default_shape_def(), box).ok());
     RevoluteJointDef rd = default_revolute_joint_def();
     rd.base.body_a = prev;
@@ -83,7 +83,7 @@ WorldId make_joint_world(std::vector<JointId>* out_joints) {
   bd.position = Vec2{-5_q32, 0_q32};
   BodyId slider = create_body(w, bd).value;
   Polygon box;
-  REQUIRE(make_box(0.3_q32, 0.3_q32, &box).ok);
+  REQUIRE(make_box(0.3_q32, 0.3_q32, &box).ok());
   REQUIRE(create_polygon_shape(slider, default_shape_def(), box).ok());
   PrismaticJointDef pd = default_prismatic_joint_def();
   pd.base.body_a = ground;

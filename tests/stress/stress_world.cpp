@@ -304,7 +304,8 @@ class Driver {
       if (!b.ok()) return b.status;
       Polygon box;
       const bool horizontal = i < 2;
-      make_box(horizontal ? reach : p_.wall / 2, horizontal ? p_.wall / 2 : reach, &box);
+      const Status made = make_box(horizontal ? reach : p_.wall / 2, horizontal ? p_.wall / 2 : reach, &box);
+      if (!made.ok()) return made;
       ShapeDef sd = default_shape_def();
       sd.filter.category_bits = UINT64_MAX;
       Result<ShapeId> s = create_polygon_shape(b.value, sd, box);
@@ -366,7 +367,7 @@ class Driver {
         }
         case 1: {
           Polygon box;
-          make_offset_box(size, size / 2, Vec2{}, 0_q32, s_.rng.chance(50) ? size / 8 : 0_q32, &box);
+          note(make_offset_box(size, size / 2, Vec2{}, 0_q32, s_.rng.chance(50) ? size / 8 : 0_q32, &box));
           note(create_polygon_shape(b.value, d, box).status);
           break;
         }
@@ -447,7 +448,7 @@ class Driver {
         case 3: {
           Polygon poly;
           const Q32 rounding = s_.rng.chance(40) ? s_.rng.between(0_q32, size / 4) : 0_q32;
-          GeometryStatus gs;
+          Status gs;
           if (kind == 2) {
             gs = make_offset_box(max(k_min_shape_size, r / 2 + size / 4), max(k_min_shape_size, r / 3), o,
                                  s_.rng.symmetric(k_pi), rounding, &poly);
@@ -457,7 +458,7 @@ class Driver {
             for (int32_t i = 0; i < n; ++i) pts[i] = o + random_offset(size);
             gs = make_polygon_from_points(pts, n, rounding, &poly);
           }
-          if (!gs.ok) {
+          if (!gs.ok()) {
             st = Status{StatusCode::invalid_argument, gs.message};
             break;
           }

@@ -45,7 +45,7 @@ BodyId static_box(WorldId w, Vec2 position, Q32 hw, Q32 hh) {
   Result<BodyId> b = create_body(w, bd);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
   return b.value;
 }
@@ -57,7 +57,7 @@ BodyId dynamic_box(WorldId w, Vec2 position, Q32 hw, Q32 hh, Q32 density) {
   Result<BodyId> b = create_body(w, bd);
   REQUIRE(b.ok());
   Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok);
+  REQUIRE(make_box(hw, hh, &box).ok());
   ShapeDef sd = default_shape_def();
   sd.density = density;
   Result<ShapeId> s = create_polygon_shape(b.value, sd, box);
@@ -217,7 +217,7 @@ long double fire(int kind, Q32 size, Q32 speed, Q32 thickness, int angle_deg, Q3
   wd.position = Vec2{1_q32 + thickness / 2, 0_q32};
   const BodyId wall = create_body(w.id, wd).value;
   Polygon box;
-  REQUIRE(make_box(thickness / 2, 50_q32, &box).ok);
+  REQUIRE(make_box(thickness / 2, 50_q32, &box).ok());
   REQUIRE(create_polygon_shape(wall, default_shape_def(), box).ok());
   BodyDef bd = default_body_def();
   bd.type = BodyType::dynamic_body;
@@ -234,7 +234,7 @@ long double fire(int kind, Q32 size, Q32 speed, Q32 thickness, int angle_deg, Q3
   if (kind == 0) s = create_circle_shape(b.value, sd, Circle{Vec2{}, size});
   if (kind == 1) {
     Polygon p;
-    REQUIRE(make_box(size, size, &p).ok);
+    REQUIRE(make_box(size, size, &p).ok());
     s = create_polygon_shape(b.value, sd, p);
   }
   if (kind == 2) s = create_capsule_shape(b.value, sd, Capsule{Vec2{-size * 4, 0_q32}, Vec2{size * 4, 0_q32}, size});

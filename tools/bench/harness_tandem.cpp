@@ -127,8 +127,8 @@ RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup
         break;
       case ShapeKind::box: {
         Polygon box;
-        const GeometryStatus gs = make_box(s.half_width, s.half_height, &box);
-        if (!gs.ok) {
+        const Status gs = make_box(s.half_width, s.half_height, &box);
+        if (!gs.ok()) {
           result.error = "make_box (body " + std::to_string(i) + ") refused";
           (void)destroy_world(w.value);
           return result;

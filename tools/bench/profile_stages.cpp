@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
         break;
       case bench::ShapeKind::box: {
         Polygon box;
-        if (!make_box(s.half_width, s.half_height, &box).ok) return usage("make_box refused a box");
+        if (!make_box(s.half_width, s.half_height, &box).ok()) return usage("make_box refused a box");
         sh = create_polygon_shape(b.value, sd, box);
         break;
       }

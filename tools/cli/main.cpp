@@ -94,7 +94,7 @@ void run_physics_preview() {
   WorldId world = create_world(default_world_def()).value;
   BodyId ground = create_body(world, default_body_def()).value;
   Polygon ground_box;
-  make_offset_box(40_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box);
+  check(make_offset_box(40_q32, 1_q32, Vec2{0_q32, -1_q32}, 0_q32, 0_q32, &ground_box));
   check(create_polygon_shape(ground, default_shape_def(), ground_box).status);
 
   // An elastic ball dropped from 10 m (the report's accuracy test).
@@ -110,7 +110,7 @@ void run_physics_preview() {
   // A stack of ten 1 m boxes.
   std::vector<BodyId> stack;
   Polygon box;
-  make_box(0.5_q32, 0.5_q32, &box);
+  check(make_box(0.5_q32, 0.5_q32, &box));
   for (int i = 0; i < 10; ++i) {
     BodyDef d = default_body_def();
     d.type = BodyType::dynamic_body;

@@ -56,7 +56,7 @@ struct Game {
       const Result<BodyId> b = create_body(world, bd);
       if (!b.ok()) return b.status;
       Polygon box;
-      if (!make_box(w.hw, w.hh, &box).ok) return Status{StatusCode::invalid_argument, "arena wall box"};
+      if (!make_box(w.hw, w.hh, &box).ok()) return Status{StatusCode::invalid_argument, "arena wall box"};
       const Result<ShapeId> s = create_polygon_shape(b.value, default_shape_def(), box);
       if (!s.ok()) return s.status;
     }
@@ -88,7 +88,7 @@ struct Game {
       const Result<BodyId> b = create_body(world, bd);
       if (!b.ok()) return b.status;
       Polygon box;
-      if (!make_box(0.2_q32, 0.2_q32, &box).ok) return Status{StatusCode::invalid_argument, "arena crate box"};
+      if (!make_box(0.2_q32, 0.2_q32, &box).ok()) return Status{StatusCode::invalid_argument, "arena crate box"};
       const Result<ShapeId> s = create_polygon_shape(b.value, default_shape_def(), box);
       if (!s.ok()) return s.status;
     }

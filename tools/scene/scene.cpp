@@ -290,8 +290,8 @@ void read_shape_material(const Obj& o, ShapeDef* def) {
   });
 }
 
-void check_geometry(const GeometryStatus& status, const std::string& path) {
-  if (!status.ok) fail(path, status.message);
+void check_geometry(const Status& status, const std::string& path) {
+  if (!status.ok()) fail(path, status.message);
 }
 
 ShapeSpec read_shape(const JsonValue& v, const std::string& path) {
