@@ -122,6 +122,8 @@ double tandem_q32_to_double(tandem_q32 value) { return q(value).to_double(); }  
 tandem_rot tandem_rot_identity(void) { return to_c(rot_identity()); }
 tandem_rot tandem_rot_from_angle(tandem_q32 angle) { return to_c(rot_from_angle(q(angle))); }
 tandem_q32 tandem_rot_angle(tandem_rot rotation) { return rot_angle(to_cpp(rotation)).raw; }
+tandem_q32 tandem_vec2_length(tandem_vec2 v) { return length(to_cpp(v)).raw; }
+tandem_q32 tandem_vec2_distance(tandem_vec2 a, tandem_vec2 b) { return distance(to_cpp(a), to_cpp(b)).raw; }
 
 // --- definitions ------------------------------------------------------------------
 tandem_world_def tandem_default_world_def(void) { return to_c(default_world_def()); }

@@ -118,6 +118,10 @@ TANDEM_C_API tandem_rot tandem_rot_identity(void);
 TANDEM_C_API tandem_rot tandem_rot_from_angle(tandem_q32 angle);
 /** The angle of a rotation, radians in [−π, π]. */
 TANDEM_C_API tandem_q32 tandem_rot_angle(tandem_rot rotation);
+/** |v|, m (fixed/vec2.h length: the engine's integer square root). */
+TANDEM_C_API tandem_q32 tandem_vec2_length(tandem_vec2 v);
+/** |b − a|, m (fixed/vec2.h distance). */
+TANDEM_C_API tandem_q32 tandem_vec2_distance(tandem_vec2 a, tandem_vec2 b);
 
 /* ------------------------------------------------------------------------ */
 /* Handles                                                                   */

@@ -74,6 +74,9 @@ TEST_CASE("number conversions are exact and checked", "[capi]") {
   CHECK(r.c == cr.c.raw);
   CHECK(r.s == cr.s.raw);
   CHECK(tandem_rot_angle(r) == tandem::rot_angle(cr).raw);
+  CHECK(tandem_vec2_length(v2(3, 4)) == qi(5));
+  const tandem::Vec2 a{tandem::Q32::from_ratio(1, 3), tandem::Q32::from_int(2)}, b = tandem::vec2(-7, 5);
+  CHECK(tandem_vec2_distance({a.x.raw, a.y.raw}, {b.x.raw, b.y.raw}) == tandem::distance(a, b).raw);
 }
 
 TEST_CASE("default definitions equal the C++ defaults", "[capi]") {
