@@ -179,116 +179,78 @@ inline tandem_joint_id to_c(JointId j) { return {j.index1, j.generation, to_c(j.
 inline Filter to_cpp(const tandem_filter& f) { return {f.category_bits, f.mask_bits, f.group_index}; }
 inline tandem_filter to_c(const Filter& f) { return {f.category_bits, f.mask_bits, f.group_index}; }
 
-inline WorldDef to_cpp(const tandem_world_def& d) {
-  WorldDef w;
-  w.gravity = to_cpp(d.gravity);
-  w.sub_step_count = d.sub_step_count;
-  w.contact_hertz = q(d.contact_hertz);
-  w.contact_damping_ratio = q(d.contact_damping_ratio);
-  w.max_contact_push_speed = q(d.max_contact_push_speed);
-  w.joint_hertz = q(d.joint_hertz);
-  w.joint_damping_ratio = q(d.joint_damping_ratio);
-  w.restitution_threshold = q(d.restitution_threshold);
-  w.hit_event_threshold = q(d.hit_event_threshold);
-  w.max_linear_speed = q(d.max_linear_speed);
-  w.bounds = to_cpp(d.bounds);
-  w.enable_sleep = d.enable_sleep;
-  w.enable_continuous = d.enable_continuous;
-  w.broad_phase = static_cast<BroadPhaseKind>(d.broad_phase);
-  w.user_data = d.user_data;
-  w.internal_cookie = d.internal_cookie;
-  return w;
+// --- definitions: one field list per struct for both directions ----------------
+// f<ToCpp>(cpp_field, c_field) copies one field C → C++ (ToCpp) or C++ → C;
+// map<ToCpp>(cpp_struct, c_struct) lists a struct's fields once (here and in
+// tandem_c_joint.cpp, tandem_c_session.cpp); def_to_cpp / def_to_c run it.
+template <bool ToCpp>
+void f(Q32& a, tandem_q32& b) {
+  if constexpr (ToCpp) a = q(b); else b = a.raw;
+}
+template <bool ToCpp, typename Cpp, typename C>
+  requires(std::is_class_v<Cpp> && !std::is_same_v<Cpp, Q32>)
+void f(Cpp& a, C& b) {  // Vec2, Rot, AABB, Filter, BodyId: their to_cpp / to_c
+  if constexpr (ToCpp) a = to_cpp(b); else b = to_c(a);
+}
+template <bool ToCpp, typename T>
+  requires(std::is_integral_v<T>)
+void f(T& a, T& b) {
+  if constexpr (ToCpp) a = b; else b = a;
+}
+template <bool ToCpp, typename E, typename I>
+  requires(std::is_enum_v<E> && std::is_integral_v<I>)
+void f(E& a, I& b) {  // enums cross as their number
+  if constexpr (ToCpp) a = static_cast<E>(b); else b = static_cast<I>(a);
 }
 
-inline tandem_world_def to_c(const WorldDef& w) {
-  tandem_world_def d;
-  std::memset(&d, 0, sizeof d);
-  d.gravity = to_c(w.gravity);
-  d.sub_step_count = w.sub_step_count;
-  d.contact_hertz = w.contact_hertz.raw;
-  d.contact_damping_ratio = w.contact_damping_ratio.raw;
-  d.max_contact_push_speed = w.max_contact_push_speed.raw;
-  d.joint_hertz = w.joint_hertz.raw;
-  d.joint_damping_ratio = w.joint_damping_ratio.raw;
-  d.restitution_threshold = w.restitution_threshold.raw;
-  d.hit_event_threshold = w.hit_event_threshold.raw;
-  d.max_linear_speed = w.max_linear_speed.raw;
-  d.bounds = to_c(w.bounds);
-  d.enable_sleep = w.enable_sleep;
-  d.enable_continuous = w.enable_continuous;
-  d.broad_phase = static_cast<int32_t>(w.broad_phase);
-  d.user_data = w.user_data;
-  d.internal_cookie = w.internal_cookie;
-  return d;
+template <bool D>
+void map(WorldDef& a, tandem_world_def& b) {
+  f<D>(a.gravity, b.gravity), f<D>(a.sub_step_count, b.sub_step_count);
+  f<D>(a.contact_hertz, b.contact_hertz), f<D>(a.contact_damping_ratio, b.contact_damping_ratio);
+  f<D>(a.max_contact_push_speed, b.max_contact_push_speed);
+  f<D>(a.joint_hertz, b.joint_hertz), f<D>(a.joint_damping_ratio, b.joint_damping_ratio);
+  f<D>(a.restitution_threshold, b.restitution_threshold), f<D>(a.hit_event_threshold, b.hit_event_threshold);
+  f<D>(a.max_linear_speed, b.max_linear_speed), f<D>(a.bounds, b.bounds);
+  f<D>(a.enable_sleep, b.enable_sleep), f<D>(a.enable_continuous, b.enable_continuous);
+  f<D>(a.broad_phase, b.broad_phase), f<D>(a.user_data, b.user_data), f<D>(a.internal_cookie, b.internal_cookie);
+}
+template <bool D>
+void map(BodyDef& a, tandem_body_def& b) {
+  f<D>(a.type, b.type), f<D>(a.position, b.position), f<D>(a.rotation, b.rotation);
+  f<D>(a.linear_velocity, b.linear_velocity), f<D>(a.angular_velocity, b.angular_velocity);
+  f<D>(a.linear_damping, b.linear_damping), f<D>(a.angular_damping, b.angular_damping);
+  f<D>(a.gravity_scale, b.gravity_scale), f<D>(a.user_data, b.user_data);
+  f<D>(a.enable_sleep, b.enable_sleep), f<D>(a.is_awake, b.is_awake), f<D>(a.fixed_rotation, b.fixed_rotation);
+  f<D>(a.is_bullet, b.is_bullet), f<D>(a.is_enabled, b.is_enabled), f<D>(a.internal_cookie, b.internal_cookie);
+}
+template <bool D>
+void map(ShapeDef& a, tandem_shape_def& b) {
+  f<D>(a.friction, b.friction), f<D>(a.restitution, b.restitution), f<D>(a.density, b.density);
+  f<D>(a.filter, b.filter), f<D>(a.user_data, b.user_data), f<D>(a.is_sensor, b.is_sensor);
+  f<D>(a.enable_hit_events, b.enable_hit_events), f<D>(a.internal_cookie, b.internal_cookie);
 }
 
-inline BodyDef to_cpp(const tandem_body_def& d) {
-  BodyDef b;
-  b.type = static_cast<BodyType>(d.type);
-  b.position = to_cpp(d.position);
-  b.rotation = to_cpp(d.rotation);
-  b.linear_velocity = to_cpp(d.linear_velocity);
-  b.angular_velocity = q(d.angular_velocity);
-  b.linear_damping = q(d.linear_damping);
-  b.angular_damping = q(d.angular_damping);
-  b.gravity_scale = q(d.gravity_scale);
-  b.user_data = d.user_data;
-  b.enable_sleep = d.enable_sleep;
-  b.is_awake = d.is_awake;
-  b.fixed_rotation = d.fixed_rotation;
-  b.is_bullet = d.is_bullet;
-  b.is_enabled = d.is_enabled;
-  b.internal_cookie = d.internal_cookie;
+// C++ → C (padding zeroed) and C → C++ through map().
+template <typename C, typename Cpp>
+C def_to_c(Cpp a) {
+  C b;
+  std::memset(&b, 0, sizeof b);
+  map<false>(a, b);
   return b;
 }
-
-inline tandem_body_def to_c(const BodyDef& b) {
-  tandem_body_def d;
-  std::memset(&d, 0, sizeof d);
-  d.type = static_cast<int32_t>(b.type);
-  d.position = to_c(b.position);
-  d.rotation = to_c(b.rotation);
-  d.linear_velocity = to_c(b.linear_velocity);
-  d.angular_velocity = b.angular_velocity.raw;
-  d.linear_damping = b.linear_damping.raw;
-  d.angular_damping = b.angular_damping.raw;
-  d.gravity_scale = b.gravity_scale.raw;
-  d.user_data = b.user_data;
-  d.enable_sleep = b.enable_sleep;
-  d.is_awake = b.is_awake;
-  d.fixed_rotation = b.fixed_rotation;
-  d.is_bullet = b.is_bullet;
-  d.is_enabled = b.is_enabled;
-  d.internal_cookie = b.internal_cookie;
-  return d;
+template <typename Cpp, typename C>
+Cpp def_to_cpp(C b) {
+  Cpp a{};
+  map<true>(a, b);
+  return a;
 }
 
-inline ShapeDef to_cpp(const tandem_shape_def& d) {
-  ShapeDef s;
-  s.friction = q(d.friction);
-  s.restitution = q(d.restitution);
-  s.density = q(d.density);
-  s.filter = to_cpp(d.filter);
-  s.user_data = d.user_data;
-  s.is_sensor = d.is_sensor;
-  s.enable_hit_events = d.enable_hit_events;
-  s.internal_cookie = d.internal_cookie;
-  return s;
-}
-
-inline tandem_shape_def to_c(const ShapeDef& s) {
-  tandem_shape_def d;
-  std::memset(&d, 0, sizeof d);
-  d.friction = s.friction.raw;
-  d.restitution = s.restitution.raw;
-  d.density = s.density.raw;
-  d.filter = to_c(s.filter);
-  d.user_data = s.user_data;
-  d.is_sensor = s.is_sensor;
-  d.enable_hit_events = s.enable_hit_events;
-  d.internal_cookie = s.internal_cookie;
-  return d;
-}
+inline WorldDef to_cpp(const tandem_world_def& d) { return def_to_cpp<WorldDef>(d); }
+inline tandem_world_def to_c(const WorldDef& w) { return def_to_c<tandem_world_def>(w); }
+inline BodyDef to_cpp(const tandem_body_def& d) { return def_to_cpp<BodyDef>(d); }
+inline tandem_body_def to_c(const BodyDef& b) { return def_to_c<tandem_body_def>(b); }
+inline ShapeDef to_cpp(const tandem_shape_def& d) { return def_to_cpp<ShapeDef>(d); }
+inline tandem_shape_def to_c(const ShapeDef& s) { return def_to_c<tandem_shape_def>(s); }
 
 inline Circle to_cpp(const tandem_circle& c) { return {to_cpp(c.center), q(c.radius)}; }
 inline tandem_circle to_c(const Circle& c) { return {to_c(c.center), c.radius.raw}; }

@@ -2,35 +2,14 @@
 // (design and how to add a function: tandem_c_core.cpp's top comment).
 //
 // The seven definitions are converted field by field in both directions by
-// one map() per struct, templated on the direction, so the field lists are
-// written once.
+// one map() per struct, templated on the direction (f<>, def_to_c in
+// tandem_c_internal.h), so the field lists are written once.
 #include "tandem_c_internal.h"
 
 using namespace tandem_c_internal;
 
-namespace {
-using tandem_c_internal::to_c;
-using tandem_c_internal::to_cpp;
-
-// One field, C → C++ (ToCpp) or C++ → C.
-template <bool ToCpp>
-void f(Q32& a, tandem_q32& b) {
-  if constexpr (ToCpp) a = q(b); else b = a.raw;
-}
-template <bool ToCpp>
-void f(Vec2& a, tandem_vec2& b) {
-  if constexpr (ToCpp) a = to_cpp(b); else b = to_c(a);
-}
-template <bool ToCpp>
-void f(BodyId& a, tandem_body_id& b) {
-  if constexpr (ToCpp) a = to_cpp(b); else b = to_c(a);
-}
-template <bool ToCpp, typename T>
-  requires(std::is_integral_v<T>)
-void f(T& a, T& b) {
-  if constexpr (ToCpp) a = b; else b = a;
-}
-
+// The field lists (global namespace, the C structs' own: def_to_c / def_to_cpp
+// in tandem_c_internal.h find them by argument-dependent lookup).
 template <bool D>
 void map(JointBaseDef& a, tandem_joint_base_def& b) {
   f<D>(a.body_a, b.body_a), f<D>(a.body_b, b.body_b);
@@ -105,13 +84,9 @@ void map(MotorJointDef& a, tandem_motor_joint_def& b) {
   f<D>(a.internal_cookie, b.internal_cookie);
 }
 
-template <typename C, typename Cpp>
-C def_to_c(Cpp a) {
-  C b;
-  std::memset(&b, 0, sizeof b);
-  map<false>(a, b);
-  return b;
-}
+namespace {
+using tandem_c_internal::to_c;
+using tandem_c_internal::to_cpp;
 
 // create_*_joint for a C definition.
 template <typename Cpp, typename C, typename Create>
@@ -119,10 +94,7 @@ tandem_status create(const char* fn, tandem_world_id world, const C* def, tandem
   if (def == nullptr) return null_pointer(fn, "def");
   if (out == nullptr) return null_pointer(fn, "out_joint");
   return guard(fn, [&] {
-    Cpp a;
-    C b = *def;
-    map<true>(a, b);
-    const Result<JointId> r = create_fn(to_cpp(world), a);
+    const Result<JointId> r = create_fn(to_cpp(world), def_to_cpp<Cpp>(*def));
     if (r.ok()) *out = to_c(r.value);
     return status(r.status);
   });

@@ -11,6 +11,17 @@
 
 using namespace tandem_c_internal;
 
+// The config's field list (global namespace: found by def_to_c / def_to_cpp).
+template <bool D>
+void map(SessionConfig& a, tandem_session_config& b) {
+  f<D>(a.mode, b.mode), f<D>(a.player_count, b.player_count), f<D>(a.spectator_count, b.spectator_count);
+  f<D>(a.local_endpoint, b.local_endpoint), f<D>(a.input_bytes, b.input_bytes), f<D>(a.input_delay, b.input_delay);
+  f<D>(a.prediction_window, b.prediction_window), f<D>(a.session_id, b.session_id);
+  f<D>(a.time_step, b.time_step), f<D>(a.history_ticks, b.history_ticks);
+  f<D>(a.disconnect_timeout_frames, b.disconnect_timeout_frames), f<D>(a.record_replay, b.record_replay);
+  f<D>(a.keyframe_interval, b.keyframe_interval);
+}
+
 namespace {
 using tandem_c_internal::to_c;
 using tandem_c_internal::to_cpp;
@@ -29,42 +40,8 @@ Registry<SessionObject>& sessions() {
   SessionObject* var = sessions().get(fn, (id).index1, (id).generation); \
   if (var == nullptr) return t_code
 
-tandem_session_config to_c(const SessionConfig& c) {
-  tandem_session_config o;
-  std::memset(&o, 0, sizeof o);
-  o.mode = static_cast<int32_t>(c.mode);
-  o.player_count = c.player_count;
-  o.spectator_count = c.spectator_count;
-  o.local_endpoint = c.local_endpoint;
-  o.input_bytes = c.input_bytes;
-  o.input_delay = c.input_delay;
-  o.prediction_window = c.prediction_window;
-  o.session_id = c.session_id;
-  o.time_step = c.time_step.raw;
-  o.history_ticks = c.history_ticks;
-  o.disconnect_timeout_frames = c.disconnect_timeout_frames;
-  o.record_replay = c.record_replay;
-  o.keyframe_interval = c.keyframe_interval;
-  return o;
-}
-
-SessionConfig to_cpp(const tandem_session_config& c) {
-  SessionConfig o;
-  o.mode = static_cast<SessionMode>(c.mode);
-  o.player_count = c.player_count;
-  o.spectator_count = c.spectator_count;
-  o.local_endpoint = c.local_endpoint;
-  o.input_bytes = c.input_bytes;
-  o.input_delay = c.input_delay;
-  o.prediction_window = c.prediction_window;
-  o.session_id = c.session_id;
-  o.time_step = q(c.time_step);
-  o.history_ticks = c.history_ticks;
-  o.disconnect_timeout_frames = c.disconnect_timeout_frames;
-  o.record_replay = c.record_replay;
-  o.keyframe_interval = c.keyframe_interval;
-  return o;
-}
+tandem_session_config to_c(const SessionConfig& c) { return def_to_c<tandem_session_config>(c); }
+SessionConfig to_cpp(const tandem_session_config& c) { return def_to_cpp<SessionConfig>(c); }
 
 // The C++ callbacks calling the C ones (cb is the SessionObject's copy).
 SessionCallbacks adapt(const tandem_session_callbacks* cb) {
@@ -107,6 +84,16 @@ T session_value(tandem_session_id id, T fallback, F&& get) {
     t_code = code;  // value getters leave the last error alone
     t_message = message;
     return s == nullptr ? fallback : get(s->session);
+  });
+}
+
+// A text of a live session (text rule).
+template <typename Get>
+tandem_status session_text(const char* fn, tandem_session_id session, char* out, size_t capacity, size_t* out_length,
+                           Get&& get) {
+  return guard(fn, [&] {
+    TANDEM_C_GET_SESSION(s, fn, session);
+    return copy_text(fn, get(s->session), out, capacity, out_length);
   });
 }
 
@@ -267,11 +254,8 @@ tandem_status tandem_session_get_stop(tandem_session_id session, tandem_session_
 
 tandem_status tandem_session_stop_message(tandem_session_id session, char* out_text, size_t capacity,
                                           size_t* out_length) {
-  static const char* fn = "tandem_session_stop_message";
-  return guard(fn, [&] {
-    TANDEM_C_GET_SESSION(s, fn, session);
-    return copy_text(fn, s->session.stop_info().message, out_text, capacity, out_length);
-  });
+  return session_text("tandem_session_stop_message", session, out_text, capacity, out_length,
+                      [](const Session& s) -> const std::string& { return s.stop_info().message; });
 }
 
 tandem_status tandem_session_get_stats(tandem_session_id session, tandem_session_stats* out_stats) {
@@ -291,11 +275,8 @@ tandem_status tandem_session_get_stats(tandem_session_id session, tandem_session
 
 tandem_status tandem_session_last_rejection(tandem_session_id session, char* out_text, size_t capacity,
                                             size_t* out_length) {
-  static const char* fn = "tandem_session_last_rejection";
-  return guard(fn, [&] {
-    TANDEM_C_GET_SESSION(s, fn, session);
-    return copy_text(fn, s->session.stats().last_rejection, out_text, capacity, out_length);
-  });
+  return session_text("tandem_session_last_rejection", session, out_text, capacity, out_length,
+                      [](const Session& s) -> const std::string& { return s.stats().last_rejection; });
 }
 
 tandem_status tandem_session_replay_bytes(tandem_session_id session, uint8_t* out_bytes, size_t capacity,

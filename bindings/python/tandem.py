@@ -322,24 +322,19 @@ def _vec(xy):
 
 
 # --- objects ------------------------------------------------------------------------------
-class World:
-    """A physics world (destroyed by close() or at garbage collection)."""
+class _Owned:
+    """Something the library owns for us, named by self.id: close() (idempotent,
+    also at garbage collection and at the end of a with block) calls
+    _destroy(id) unless _alive(id) says it is gone already."""
 
-    def __init__(self, gravity=None, world_id=None, **settings):
-        if world_id is None:
-            d = lib.tandem_default_world_def()
-            if gravity is not None:
-                d.gravity = _vec(gravity)
-            for key, value in settings.items():
-                setattr(d, key, value)
-            world_id = WorldId()
-            _check(lib.tandem_create_world(byref(d), byref(world_id)))
-        self.id = world_id
+    id = None
+
+    def _alive(self, _id):
+        return True
 
     def close(self):
-        """Destroys the world (idempotent)."""
-        if self.id is not None and lib.tandem_world_is_valid(self.id):
-            _check(lib.tandem_destroy_world(self.id))
+        if self.id is not None and self._alive(self.id):
+            _check(self._destroy(self.id))
         self.id = None
 
     def __del__(self):
@@ -353,6 +348,24 @@ class World:
 
     def __exit__(self, *exc):
         self.close()
+
+
+class World(_Owned):
+    """A physics world (destroyed by close() or at garbage collection)."""
+
+    _destroy = staticmethod(lambda world_id: lib.tandem_destroy_world(world_id))
+    _alive = staticmethod(lambda world_id: lib.tandem_world_is_valid(world_id))
+
+    def __init__(self, gravity=None, world_id=None, **settings):
+        if world_id is None:
+            d = lib.tandem_default_world_def()
+            if gravity is not None:
+                d.gravity = _vec(gravity)
+            for key, value in settings.items():
+                setattr(d, key, value)
+            world_id = WorldId()
+            _check(lib.tandem_create_world(byref(d), byref(world_id)))
+        self.id = world_id
 
     def step(self, time_step):
         """Advances by time_step seconds (raw Q32.32; see q()); returns the step flags."""
@@ -518,8 +531,10 @@ class Body:
         _check(lib.tandem_destroy_body(self.id))
 
 
-class Scene:
+class Scene(_Owned):
     """A JSON scene file (docs/scene-format.md), loaded and ready to build."""
+
+    _destroy = staticmethod(lambda scene_id: lib.tandem_scene_destroy(scene_id))
 
     def __init__(self, path=None, text=None, name="scene"):
         self.id = ObjectId()
@@ -532,17 +547,6 @@ class Scene:
         _check(lib.tandem_scene_get_info(self.id, byref(info)))
         self.step_hz, self.time_step, self.ticks = info.step_hz, info.time_step, info.ticks
         self.body_count, self.input_count = info.body_count, info.input_count
-
-    def close(self):
-        if self.id is not None:
-            _check(lib.tandem_scene_destroy(self.id))
-        self.id = None
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
 
     def build(self):
         """A new World built from the scene."""

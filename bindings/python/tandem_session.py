@@ -13,7 +13,7 @@ import ctypes
 from ctypes import CFUNCTYPE, POINTER, Structure, byref, c_bool, c_char_p, c_int32, c_size_t, c_uint8, c_uint32
 from ctypes import c_uint64, c_void_p
 
-from tandem import ObjectId, WorldId, _check, _fn, _status, lib, q32
+from tandem import ObjectId, WorldId, _check, _fn, _Owned, _status, lib, q32
 
 __all__ = ["Session"]
 
@@ -69,7 +69,7 @@ _fn("tandem_session_get_stats", _status, ObjectId, POINTER(SessionStats))
 _fn("tandem_session_replay_bytes", _status, ObjectId, POINTER(c_uint8), c_size_t, POINTER(c_size_t))
 
 
-class Session:
+class Session(_Owned):
     """A lockstep or rollback session (replay/session.h) for one peer.
 
     send(endpoint, packet_bytes) is the transport; make_commands(tick, inputs,
@@ -77,6 +77,8 @@ class Session:
     the list of every player's input bytes; after_step(tick), save_game() ->
     bytes and load_game(bytes) are optional. Config fields by name (defaults:
     the C++ ones). Exceptions raised in a callback stop the session."""
+
+    _destroy = staticmethod(lambda session_id: lib.tandem_session_destroy(session_id))
 
     def __init__(self, world, send, make_commands, after_step=None, save_game=None, load_game=None, **config):
         c = lib.tandem_default_session_config()
@@ -119,16 +121,6 @@ class Session:
         self.id = ObjectId()
         _check(lib.tandem_session_create(world.id, byref(c), byref(cb), byref(self.id)))
 
-    def close(self):
-        if self.id is not None:
-            _check(lib.tandem_session_destroy(self.id))
-        self.id = None
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
 
     def advance(self, local_input):
         """One frame with this peer's input (input_bytes bytes): STEPPED, STALLED or STOPPED."""
