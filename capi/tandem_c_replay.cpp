@@ -127,6 +127,11 @@ tandem_command tandem_default_command(int32_t type) {
   return c;
 }
 
+const char* tandem_command_type_name(int32_t type) {
+  if (type < 1 || type > k_last_command_type) return "unknown";
+  return command_type_name(static_cast<CommandType>(type));
+}
+
 tandem_shape_spec tandem_default_shape_spec(int32_t kind) {
   tandem_shape_spec s;
   std::memset(&s, 0, sizeof s);
@@ -315,6 +320,10 @@ ReplayObject* peek_replay(tandem_replay_id id) {
   return r;
 }
 }  // namespace
+
+bool tandem_is_replay_image(const uint8_t* bytes, size_t size) {
+  return bytes != nullptr && is_replay_image(std::span<const uint8_t>(bytes, size));
+}
 
 tandem_status tandem_replay_load_memory(const uint8_t* bytes, size_t size, tandem_replay_id* out_replay) {
   static const char* fn = "tandem_replay_load_memory";

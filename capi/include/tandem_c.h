@@ -14,11 +14,17 @@
  * and — for display only — double; there is deliberately no conversion from
  * floating point (write "0.1", not 0.1, to get the same bits everywhere).
  *
- * HANDLES. Worlds, bodies and shapes are small POD structs (index + 1 and a
- * generation, plus the world for bodies and shapes); the all-zero handle is
- * null. A stale handle (its object destroyed) is detected, never
- * dereferenced. Recorders, loaded replays and loaded scenes are handles of
- * the same kind, owned by this library until tandem_*_destroy().
+ * HANDLES. Worlds, bodies, shapes and joints are small POD structs (index +
+ * 1 and a generation, plus the world for bodies, shapes and joints); the
+ * all-zero handle is null. A stale handle (its object destroyed) is
+ * detected, never dereferenced. Sessions, recorders, loaded replays, decoded
+ * states and loaded scenes are handles of the same kind, owned by this
+ * library until tandem_*_destroy().
+ *
+ * CALLBACKS are plain function pointers with a `void* context` the caller
+ * chooses (the session's transport and game, payload handlers, progress,
+ * the custom filter). They run on the calling thread, inside the call that
+ * triggers them, and must not destroy the object that calls them.
  *
  * ERRORS. A function that can fail returns a tandem_status (TANDEM_OK = 0).
  * Every such function records the outcome as the CALLING THREAD's last error:

@@ -225,6 +225,9 @@ typedef struct tandem_command_list tandem_command_list;
 /** Appends a converted copy of *command (its borrowed arrays are copied). */
 TANDEM_C_API tandem_status tandem_command_list_push(tandem_command_list* list, const tandem_command* command);
 
+/** "apply_force", "create_joint", ... (command_type_name); "unknown" outside 1…19. */
+TANDEM_C_API const char* tandem_command_type_name(int32_t type);
+
 /** A command of `type` with defaults (at_center and flag true, identity
  * rotation, default body def, the JointSpec defaults in joint_spec). */
 TANDEM_C_API tandem_command tandem_default_command(int32_t type);
@@ -276,6 +279,8 @@ TANDEM_C_API uint64_t tandem_recorder_last_hash(tandem_recorder_id recorder);
 TANDEM_C_API tandem_status tandem_recorder_memory(tandem_recorder_id recorder, uint8_t* out_bytes, size_t capacity,
                                                   size_t* out_size);
 
+/** True when the bytes start with the replay magic (is_replay_image). */
+TANDEM_C_API bool tandem_is_replay_image(const uint8_t* bytes, size_t size);
 /** Loads a replay image from memory (copied). */
 TANDEM_C_API tandem_status tandem_replay_load_memory(const uint8_t* bytes, size_t size, tandem_replay_id* out_replay);
 /** Loads a replay file (path UTF-8). */

@@ -230,6 +230,25 @@ TEST_CASE("joints: every kind, getters, setters, lists, events and errors", "[ca
   require_error(tandem_body_joints(e, ids, 8, &n), TANDEM_ERROR_INVALID_HANDLE, "");
 }
 
+TEST_CASE("collide_connected decides whether joined bodies touch", "[capi][joint]") {
+  for (const bool collide : {false, true}) {
+    CWorld c;
+    REQUIRE(tandem_world_set_gravity(c.id, v2(0, 0)) == TANDEM_OK);
+    const tandem_body_id a = add_box(c.id, TANDEM_BODY_DYNAMIC, v2(0, 2), qt("0.5"));
+    const tandem_body_id b = add_box(c.id, TANDEM_BODY_DYNAMIC, {qt("0.5"), qi(2)}, qt("0.5"));  // overlaps a by half
+    tandem_revolute_joint_def d = tandem_default_revolute_joint_def();
+    d.base = base(a, b);
+    d.base.collide_connected = collide;
+    tandem_joint_id j{};
+    REQUIRE(tandem_create_revolute_joint(c.id, &d, &j) == TANDEM_OK);
+    REQUIRE(tandem_world_step(c.id, qt("0.0166666667"), nullptr) == TANDEM_OK);
+    int32_t n = -1;
+    REQUIRE(tandem_world_contact_begin_events(c.id, nullptr, 0, &n) == TANDEM_OK);
+    INFO("collide_connected " << collide);
+    CHECK((n > 0) == collide);
+  }
+}
+
 TEST_CASE("a scene with every joint kind through C and C++ hashes the same every tick", "[capi][joint][determinism]") {
   using namespace tandem;
   const WorldId cw = create_world(default_world_def()).value;

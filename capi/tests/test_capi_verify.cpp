@@ -101,6 +101,13 @@ tandem_status live_tick(void* context, uint64_t tick) {
 
 TEST_CASE("verify, seek and diffs with C payload handlers and progress callbacks", "[capi][verify]") {
   const Recording recording = record();
+  CHECK(tandem_is_replay_image(recording.bytes.data(), recording.bytes.size()));
+  CHECK_FALSE(tandem_is_replay_image(recording.bytes.data(), 3));
+  CHECK_FALSE(tandem_is_replay_image(nullptr, 0));
+  CHECK(std::string(tandem_command_type_name(TANDEM_COMMAND_SET_JOINT_LIMITS)) == "set_joint_limits");
+  CHECK(std::string(tandem_command_type_name(TANDEM_COMMAND_APPLY_FORCE)) == "apply_force");
+  CHECK(std::string(tandem_command_type_name(0)) == "unknown");
+  CHECK(std::string(tandem_command_type_name(300)) == "unknown");
   tandem_replay_id r{};
   REQUIRE(tandem_replay_load_memory(recording.bytes.data(), recording.bytes.size(), &r) == TANDEM_OK);
 
