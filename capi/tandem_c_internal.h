@@ -284,6 +284,9 @@ inline tandem_polygon to_c(const Polygon& p) {
   return o;
 }
 
+inline ChainSegment to_cpp(const tandem_chain_segment& c) {
+  return {to_cpp(c.ghost1), to_cpp(c.segment), to_cpp(c.ghost2), c.chain_id};
+}
 inline tandem_chain_segment to_c(const ChainSegment& c) {
   return {to_c(c.ghost1), to_c(c.segment), to_c(c.ghost2), c.chain_id};
 }
