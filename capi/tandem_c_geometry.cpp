@@ -41,6 +41,43 @@ tandem_status mass(const char* fn, const C* shape, tandem_q32 density, tandem_ma
   });
 }
 
+ShapeProxy to_cpp(const tandem_shape_proxy& p) {
+  ShapeProxy o;
+  for (size_t i = 0; i < o.points.size(); ++i) o.points[i] = to_cpp(p.points[i]);
+  o.count = p.count;
+  o.radius = q(p.radius);
+  return o;
+}
+tandem_shape_proxy to_c(const ShapeProxy& p) {
+  tandem_shape_proxy o;
+  std::memset(&o, 0, sizeof o);
+  for (size_t i = 0; i < p.points.size(); ++i) o.points[i] = to_c(p.points[i]);
+  o.count = p.count;
+  o.radius = p.radius.raw;
+  return o;
+}
+Sweep to_cpp(const tandem_sweep& s) {
+  return {to_cpp(s.local_center), to_cpp(s.c1), to_cpp(s.c2), to_cpp(s.q1), to_cpp(s.q2)};
+}
+tandem_cast_output to_c(const CastOutput& o) {
+  tandem_cast_output c;
+  std::memset(&c, 0, sizeof c);
+  c.normal = to_c(o.normal);
+  c.point = to_c(o.point);
+  c.fraction = o.fraction.raw;
+  c.iterations = o.iterations;
+  c.hit = o.hit;
+  return c;
+}
+// A proxy's count must index its points array.
+tandem_status check_proxy(const char* fn, const char* name, const tandem_shape_proxy& p) {
+  if (p.count < 1 || p.count > TANDEM_MAX_POLYGON_VERTICES) {
+    return fail(TANDEM_ERROR_INVALID_ARGUMENT,
+                std::string(fn) + ": " + name + ".count " + std::to_string(p.count) + " is outside 1…8");
+  }
+  return TANDEM_OK;
+}
+
 }  // namespace
 
 tandem_status tandem_validate_circle(const tandem_circle* circle) {
@@ -122,12 +159,7 @@ tandem_status tandem_ray_cast_shape(const tandem_shape_geometry* shape, const ta
       case ShapeType::polygon: o = ray_cast_polygon(in, g.polygon); break;
       default: o = ray_cast_segment(in, g.chain_segment.segment, true); break;
     }
-    std::memset(out, 0, sizeof *out);
-    out->normal = to_c(o.normal);
-    out->point = to_c(o.point);
-    out->fraction = o.fraction.raw;
-    out->iterations = o.iterations;
-    out->hit = o.hit;
+    *out = to_c(o);
     return succeed();
   });
 }
@@ -142,6 +174,93 @@ tandem_status tandem_collide(const tandem_shape_geometry* a, tandem_transform tr
   if (const tandem_status s = geometry_of(fn, "b", b, &gb); s != TANDEM_OK) return s;
   return guard(fn, [&] {
     *out_manifold = to_c(collide(ga, to_cpp(transform_a), gb, to_cpp(transform_b)));
+    return succeed();
+  });
+}
+
+tandem_status tandem_make_proxy(const tandem_vec2* points, int32_t count, tandem_q32 radius,
+                                tandem_shape_proxy* out_proxy) {
+  static const char* fn = "tandem_make_proxy";
+  if (out_proxy == nullptr) return null_pointer(fn, "out_proxy");
+  if (points == nullptr && count > 0) return null_pointer(fn, "points");
+  return guard(fn, [&] {
+    std::vector<Vec2> p;
+    for (int32_t i = 0; i < count && i < TANDEM_MAX_POLYGON_VERTICES; ++i) p.push_back(to_cpp(points[i]));
+    *out_proxy = to_c(make_proxy(p.data(), static_cast<int32_t>(p.size()), q(radius)));
+    return succeed();
+  });
+}
+
+tandem_status tandem_make_shape_proxy(const tandem_shape_geometry* shape, tandem_shape_proxy* out_proxy) {
+  static const char* fn = "tandem_make_shape_proxy";
+  if (out_proxy == nullptr) return null_pointer(fn, "out_proxy");
+  ShapeGeometry g;
+  if (const tandem_status s = geometry_of(fn, "shape", shape, &g); s != TANDEM_OK) return s;
+  return guard(fn, [&] {
+    switch (g.type) {
+      case ShapeType::circle: *out_proxy = to_c(make_proxy(g.circle)); break;
+      case ShapeType::capsule: *out_proxy = to_c(make_proxy(g.capsule)); break;
+      case ShapeType::segment: *out_proxy = to_c(make_proxy(g.segment)); break;
+      case ShapeType::polygon: *out_proxy = to_c(make_proxy(g.polygon)); break;
+      default:
+        return fail(TANDEM_ERROR_INVALID_ARGUMENT,
+                    std::string(fn) + ": a chain segment has no proxy (use its segment)");
+    }
+    return succeed();
+  });
+}
+
+tandem_status tandem_shape_distance(const tandem_distance_input* input, tandem_distance_output* out) {
+  static const char* fn = "tandem_shape_distance";
+  if (input == nullptr) return null_pointer(fn, "input");
+  if (out == nullptr) return null_pointer(fn, "out");
+  if (const tandem_status s = check_proxy(fn, "proxy_a", input->proxy_a); s != TANDEM_OK) return s;
+  if (const tandem_status s = check_proxy(fn, "proxy_b", input->proxy_b); s != TANDEM_OK) return s;
+  return guard(fn, [&] {
+    const DistanceOutput d = shape_distance(DistanceInput{to_cpp(input->proxy_a), to_cpp(input->proxy_b),
+                                                          to_cpp(input->transform_a), to_cpp(input->transform_b),
+                                                          input->use_radii});
+    *out = tandem_distance_output{to_c(d.point_a), to_c(d.point_b), to_c(d.normal), d.distance.raw, d.iterations,
+                                  d.simplex_count};
+    return succeed();
+  });
+}
+
+tandem_status tandem_shape_cast(const tandem_shape_cast_input* input, tandem_cast_output* out) {
+  static const char* fn = "tandem_shape_cast";
+  if (input == nullptr) return null_pointer(fn, "input");
+  if (out == nullptr) return null_pointer(fn, "out");
+  if (const tandem_status s = check_proxy(fn, "proxy_a", input->proxy_a); s != TANDEM_OK) return s;
+  if (const tandem_status s = check_proxy(fn, "proxy_b", input->proxy_b); s != TANDEM_OK) return s;
+  return guard(fn, [&] {
+    *out = to_c(shape_cast(ShapeCastInput{to_cpp(input->proxy_a), to_cpp(input->proxy_b), to_cpp(input->transform_a),
+                                          to_cpp(input->transform_b), to_cpp(input->translation_b),
+                                          q(input->max_fraction), input->can_encroach}));
+    return succeed();
+  });
+}
+
+tandem_status tandem_sweep_transform(const tandem_sweep* sweep, tandem_q32 t, tandem_transform* out_transform) {
+  static const char* fn = "tandem_sweep_transform";
+  if (sweep == nullptr) return null_pointer(fn, "sweep");
+  if (out_transform == nullptr) return null_pointer(fn, "out_transform");
+  return guard(fn, [&] {
+    *out_transform = to_c(sweep_transform(to_cpp(*sweep), q(t)));
+    return succeed();
+  });
+}
+
+tandem_status tandem_time_of_impact(const tandem_toi_input* input, tandem_toi_output* out) {
+  static const char* fn = "tandem_time_of_impact";
+  if (input == nullptr) return null_pointer(fn, "input");
+  if (out == nullptr) return null_pointer(fn, "out");
+  if (const tandem_status s = check_proxy(fn, "proxy_a", input->proxy_a); s != TANDEM_OK) return s;
+  if (const tandem_status s = check_proxy(fn, "proxy_b", input->proxy_b); s != TANDEM_OK) return s;
+  return guard(fn, [&] {
+    const ToiOutput o = time_of_impact(ToiInput{to_cpp(input->proxy_a), to_cpp(input->proxy_b),
+                                                to_cpp(input->sweep_a), to_cpp(input->sweep_b),
+                                                q(input->max_fraction)});
+    *out = tandem_toi_output{static_cast<int32_t>(o.state), o.fraction.raw, o.iterations};
     return succeed();
   });
 }

@@ -53,7 +53,8 @@
  * FILES. This umbrella includes the parts, each usable alone:
  *   tandem_c_base.h     status codes, numbers, value types, handles, definitions, geometry
  *   tandem_c_world.h    worlds, bodies, shapes, queries, events, the world profile
- *   tandem_c_geometry.h single-shape validation, mass, bounds, point tests, ray casts, manifolds
+ *   tandem_c_geometry.h single-shape validation, mass, bounds, point tests, ray casts, manifolds,
+ *                       GJK distance, shape casts, time of impact
  *   tandem_c_joint.h    joints (physics/joint.h)
  *   tandem_c_replay.h   snapshots, hashes, commands, recorders, replays, verify, diff, sync test, scenes
  *   tandem_c_session.h  the lockstep / rollback session (replay/session.h)

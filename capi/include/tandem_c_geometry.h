@@ -63,6 +63,81 @@ TANDEM_C_API tandem_status tandem_collide(const tandem_shape_geometry* a, tandem
                                           const tandem_shape_geometry* b, tandem_transform transform_b,
                                           tandem_manifold* out_manifold);
 
+/* --- Distance, shape cast, time of impact (GJK; physics/collision.h) ---- */
+
+/** A convex point set with a radius (ShapeProxy): circle 1 point, capsule
+ * and segment 2, polygon its vertices. */
+typedef struct tandem_shape_proxy {
+  tandem_vec2 points[TANDEM_MAX_POLYGON_VERTICES];
+  int32_t count;
+  tandem_q32 radius;
+} tandem_shape_proxy;
+
+/** Input of tandem_shape_distance (DistanceInput). */
+typedef struct tandem_distance_input {
+  tandem_shape_proxy proxy_a, proxy_b;
+  tandem_transform transform_a, transform_b;
+  bool use_radii;  /**< subtract the radii from the core distance */
+} tandem_distance_input;
+
+/** Closest points and distance (DistanceOutput). */
+typedef struct tandem_distance_output {
+  tandem_vec2 point_a, point_b;  /**< world, m */
+  tandem_vec2 normal;            /**< unit, from A to B (zero if the cores overlap) */
+  tandem_q32 distance;           /**< m, ≥ 0 */
+  int32_t iterations, simplex_count;
+} tandem_distance_output;
+
+/** Input of tandem_shape_cast (ShapeCastInput): B moves by translation_b. */
+typedef struct tandem_shape_cast_input {
+  tandem_shape_proxy proxy_a, proxy_b;
+  tandem_transform transform_a, transform_b;
+  tandem_vec2 translation_b;  /**< m */
+  tandem_q32 max_fraction;
+  bool can_encroach;
+} tandem_shape_cast_input;
+
+/** A body's motion over a step (Sweep). */
+typedef struct tandem_sweep {
+  tandem_vec2 local_center;  /**< centre of mass in the body frame, m */
+  tandem_vec2 c1, c2;        /**< world centre of mass at t = 0 and 1 */
+  tandem_rot q1, q2;         /**< rotation at t = 0 and 1 */
+} tandem_sweep;
+
+/** Time-of-impact states (ToiState). */
+#define TANDEM_TOI_UNKNOWN 0
+#define TANDEM_TOI_FAILED 1
+#define TANDEM_TOI_OVERLAPPED 2
+#define TANDEM_TOI_HIT 3
+#define TANDEM_TOI_SEPARATED 4
+
+/** Input and output of tandem_time_of_impact (ToiInput, ToiOutput). */
+typedef struct tandem_toi_input {
+  tandem_shape_proxy proxy_a, proxy_b;
+  tandem_sweep sweep_a, sweep_b;
+  tandem_q32 max_fraction;
+} tandem_toi_input;
+typedef struct tandem_toi_output {
+  int32_t state;  /**< TANDEM_TOI_* */
+  tandem_q32 fraction;
+  int32_t iterations;
+} tandem_toi_output;
+
+/** A proxy from points (count clamped to 8; none: one point at the origin). */
+TANDEM_C_API tandem_status tandem_make_proxy(const tandem_vec2* points, int32_t count, tandem_q32 radius,
+                                             tandem_shape_proxy* out_proxy);
+/** The proxy of a circle, capsule, segment or polygon (not a chain segment). */
+TANDEM_C_API tandem_status tandem_make_shape_proxy(const tandem_shape_geometry* shape, tandem_shape_proxy* out_proxy);
+/** GJK distance with witness points (shape_distance). */
+TANDEM_C_API tandem_status tandem_shape_distance(const tandem_distance_input* input, tandem_distance_output* out);
+/** Linear shape cast: the first fraction at which B touches A (shape_cast). */
+TANDEM_C_API tandem_status tandem_shape_cast(const tandem_shape_cast_input* input, tandem_cast_output* out);
+/** The transform of a sweep at t in [0, 1] (sweep_transform). */
+TANDEM_C_API tandem_status tandem_sweep_transform(const tandem_sweep* sweep, tandem_q32 t,
+                                                  tandem_transform* out_transform);
+/** Time of impact of two moving shapes (time_of_impact). */
+TANDEM_C_API tandem_status tandem_time_of_impact(const tandem_toi_input* input, tandem_toi_output* out);
+
 #ifdef __cplusplus
 }  /* extern "C" */
 #endif

@@ -135,3 +135,102 @@ TEST_CASE("geometry: validation, mass, bounds, point tests, ray casts and manifo
   require_error(tandem_collide(&circle, far, &unknown, at0, &mf), TANDEM_ERROR_INVALID_ARGUMENT, "b.type");
   require_error(tandem_collide(&circle, far, &polygon, at0, nullptr), TANDEM_ERROR_NULL_POINTER, "out_manifold");
 }
+
+TEST_CASE("geometry: distance, shape cast, sweeps and time of impact equal C++", "[capi][geometry]") {
+  using namespace tandem;
+  const tandem_shape_geometry circle = geometry(TANDEM_SHAPE_CIRCLE);
+  const tandem_shape_geometry polygon = geometry(TANDEM_SHAPE_POLYGON);
+  tandem_shape_proxy pa{}, pb{};
+  REQUIRE(tandem_make_shape_proxy(&polygon, &pa) == TANDEM_OK);
+  REQUIRE(tandem_make_shape_proxy(&circle, &pb) == TANDEM_OK);
+  CHECK(pa.count == polygon.polygon.count);
+  CHECK(pb.count == 1);
+  CHECK(pb.radius == circle.circle.radius);
+  tandem_shape_proxy seg{}, cap{};
+  const tandem_shape_geometry segment = geometry(TANDEM_SHAPE_SEGMENT);
+  const tandem_shape_geometry capsule = geometry(TANDEM_SHAPE_CAPSULE);
+  REQUIRE(tandem_make_shape_proxy(&segment, &seg) == TANDEM_OK);
+  REQUIRE(tandem_make_shape_proxy(&capsule, &cap) == TANDEM_OK);
+  CHECK(seg.count == 2);
+  CHECK(cap.radius == capsule.capsule.radius);
+  const tandem_shape_geometry chain = geometry(TANDEM_SHAPE_CHAIN_SEGMENT);
+  require_error(tandem_make_shape_proxy(&chain, &pa), TANDEM_ERROR_INVALID_ARGUMENT, "chain segment");
+  REQUIRE(tandem_make_shape_proxy(&polygon, &pa) == TANDEM_OK);
+  const tandem_vec2 pts[2] = {v2(0, 0), v2(1, 0)};
+  tandem_shape_proxy line{};
+  REQUIRE(tandem_make_proxy(pts, 2, qt("0.1"), &line) == TANDEM_OK);
+  CHECK(line.count == 2);
+  CHECK(line.points[1].x == qi(1));
+  require_error(tandem_make_proxy(nullptr, 2, 0, &line), TANDEM_ERROR_NULL_POINTER, "points");
+  require_error(tandem_make_proxy(pts, 2, 0, nullptr), TANDEM_ERROR_NULL_POINTER, "out_proxy");
+
+  // The C++ proxies of the same shapes.
+  Polygon cpoly;
+  REQUIRE(make_offset_box(Q32::from_ratio(3, 4), Q32::from_ratio(1, 2), Vec2{Q32{}, parse_q32("0.1").value},
+                          parse_q32("0.2").value, Q32{}, &cpoly)
+              .ok);
+  const ShapeProxy cpa = make_proxy(cpoly);
+  const ShapeProxy cpb = make_proxy(Circle{cpp(circle.circle.center), Q32::from_raw(circle.circle.radius)});
+  const tandem_transform at0 = {{0, 0}, tandem_rot_identity()};
+  const tandem_transform right = {{qi(4), qi(1)}, tandem_rot_from_angle(qt("0.4"))};
+  const Transform c0{}, cright{vec2(4, 1), rot_from_angle(parse_q32("0.4").value)};
+
+  tandem_distance_input din;
+  std::memset(&din, 0, sizeof din);
+  din.proxy_a = pa, din.proxy_b = pb, din.transform_a = at0, din.transform_b = right, din.use_radii = true;
+  tandem_distance_output dout{};
+  REQUIRE(tandem_shape_distance(&din, &dout) == TANDEM_OK);
+  const DistanceOutput cd = shape_distance(DistanceInput{cpa, cpb, c0, cright, true});
+  CHECK(dout.distance == cd.distance.raw);
+  CHECK(dout.point_b.x == cd.point_b.x.raw);
+  CHECK(dout.iterations == cd.iterations);
+  CHECK(dout.distance > qi(2));
+  require_error(tandem_shape_distance(nullptr, &dout), TANDEM_ERROR_NULL_POINTER, "input");
+  require_error(tandem_shape_distance(&din, nullptr), TANDEM_ERROR_NULL_POINTER, "out");
+  din.proxy_b.count = 9;
+  require_error(tandem_shape_distance(&din, &dout), TANDEM_ERROR_INVALID_ARGUMENT, "proxy_b.count 9");
+
+  tandem_shape_cast_input cin;
+  std::memset(&cin, 0, sizeof cin);
+  cin.proxy_a = pa, cin.proxy_b = pb, cin.transform_a = at0, cin.transform_b = right;
+  cin.translation_b = v2(-8, -2), cin.max_fraction = qi(1);
+  tandem_cast_output cout{};
+  REQUIRE(tandem_shape_cast(&cin, &cout) == TANDEM_OK);
+  const CastOutput cc = shape_cast(ShapeCastInput{cpa, cpb, c0, cright, vec2(-8, -2), Q32::one(), false});
+  CHECK(cout.hit);
+  CHECK(cout.fraction == cc.fraction.raw);
+  CHECK(cout.normal.x == cc.normal.x.raw);
+  cin.proxy_a.count = 0;
+  require_error(tandem_shape_cast(&cin, &cout), TANDEM_ERROR_INVALID_ARGUMENT, "proxy_a.count 0");
+  require_error(tandem_shape_cast(nullptr, &cout), TANDEM_ERROR_NULL_POINTER, "input");
+
+  // Sweeps and time of impact: the circle flies through the box in one step.
+  tandem_sweep sa, sb;
+  std::memset(&sa, 0, sizeof sa);
+  std::memset(&sb, 0, sizeof sb);
+  sa.q1 = sa.q2 = tandem_rot_identity();
+  sb.c1 = v2(-5, 0), sb.c2 = v2(5, 0), sb.q1 = tandem_rot_identity(), sb.q2 = tandem_rot_from_angle(qi(1));
+  tandem_transform mid{};
+  REQUIRE(tandem_sweep_transform(&sb, qt("0.5"), &mid) == TANDEM_OK);
+  const Sweep csb{Vec2{}, vec2(-5, 0), vec2(5, 0), rot_identity(), rot_from_angle(Q32::one())};
+  const Transform cmid = sweep_transform(csb, Q32::from_ratio(1, 2));
+  CHECK(mid.p.x == cmid.p.x.raw);
+  CHECK(mid.q.s == cmid.q.s.raw);
+  require_error(tandem_sweep_transform(nullptr, 0, &mid), TANDEM_ERROR_NULL_POINTER, "sweep");
+  require_error(tandem_sweep_transform(&sb, 0, nullptr), TANDEM_ERROR_NULL_POINTER, "out_transform");
+  tandem_toi_input tin;
+  std::memset(&tin, 0, sizeof tin);
+  tin.proxy_a = pa, tin.proxy_b = pb, tin.sweep_a = sa, tin.sweep_b = sb, tin.max_fraction = qi(1);
+  tandem_toi_output tout{};
+  REQUIRE(tandem_time_of_impact(&tin, &tout) == TANDEM_OK);
+  const Sweep csa{Vec2{}, Vec2{}, Vec2{}, rot_identity(), rot_identity()};
+  const ToiOutput ct = time_of_impact(ToiInput{cpa, cpb, csa, csb, Q32::one()});
+  CHECK(tout.state == TANDEM_TOI_HIT);
+  CHECK(tout.state == static_cast<int32_t>(ct.state));
+  CHECK(tout.fraction == ct.fraction.raw);
+  CHECK(tout.fraction > 0);
+  CHECK(tout.fraction < qt("0.5"));
+  require_error(tandem_time_of_impact(&tin, nullptr), TANDEM_ERROR_NULL_POINTER, "out");
+  tin.proxy_a.count = -1;
+  require_error(tandem_time_of_impact(&tin, &tout), TANDEM_ERROR_INVALID_ARGUMENT, "proxy_a.count");
+}
