@@ -12,9 +12,10 @@
 // alignment); C `bool` fields are bytes here so every struct stays blittable.
 // A refused call throws TandemException with the library's message.
 //
-// Not covered yet (the C header has them; add a [DllImport] line each):
-// queries, events, replays, the sync test. Joints, the world profile and
-// the session are not in the C API yet.
+// Joints: the distance joint (ropes, as in Rope.cs) with its limits, length
+// and reaction force. Not wrapped yet (the C headers have them; add a
+// [DllImport] line each): the other joint kinds, queries, events, replays,
+// the sync test, the world profile and the session.
 using System;
 using System.Runtime.InteropServices;
 using System.Text;
@@ -27,6 +28,7 @@ namespace Tandem {
 [StructLayout(LayoutKind.Sequential)] public struct WorldId { public ushort Index1, Generation; }
 [StructLayout(LayoutKind.Sequential)] public struct BodyId { public uint Index1, Generation; public WorldId World; }
 [StructLayout(LayoutKind.Sequential)] public struct ShapeId { public uint Index1, Generation; public WorldId World; }
+[StructLayout(LayoutKind.Sequential)] public struct JointId { public uint Index1, Generation; public WorldId World; }
 /// <summary>tandem_scene_id / tandem_replay_id / tandem_recorder_id.</summary>
 [StructLayout(LayoutKind.Sequential)] public struct ObjectId { public uint Index1, Generation; }
 
@@ -78,6 +80,29 @@ public struct Polygon {
 }
 
 [StructLayout(LayoutKind.Sequential)]
+public struct JointBaseDef {
+  public BodyId BodyA, BodyB;
+  public Vec2 LocalAnchorA, LocalAnchorB;
+  public byte CollideConnected;
+  public long BreakForce, BreakTorque;
+  public ulong UserData;
+}
+
+/// <summary>tandem_distance_joint_def; a rope: EnableSpring with Hertz 0, EnableLimit, MaxLength.</summary>
+[StructLayout(LayoutKind.Sequential)]
+public struct DistanceJointDef {
+  public JointBaseDef Base;
+  public long Length;
+  public byte EnableSpring;
+  public long Hertz, DampingRatio;
+  public byte EnableLimit;
+  public long MinLength, MaxLength;
+  public byte EnableMotor;
+  public long MotorSpeed, MaxMotorForce;
+  public int InternalCookie;
+}
+
+[StructLayout(LayoutKind.Sequential)]
 public struct SceneInfo { public int StepHz; public long TimeStep; public long Ticks; public int BodyCount, InputCount; }
 
 /// <summary>The raw C API (tandem_c.h), one declaration per function.</summary>
@@ -106,6 +131,14 @@ public static class Native {
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_make_box(long halfWidth, long halfHeight, out Polygon polygon);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_create_polygon_shape(BodyId body, ref ShapeDef def, ref Polygon polygon, out ShapeId shape);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_create_circle_shape(BodyId body, ref ShapeDef def, ref Circle circle, out ShapeId shape);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern Vec2 tandem_body_local_point(BodyId body, Vec2 worldPoint);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern long tandem_vec2_distance(Vec2 a, Vec2 b);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern DistanceJointDef tandem_default_distance_joint_def();
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_create_distance_joint(WorldId world, ref DistanceJointDef def, out JointId joint);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_destroy_joint(JointId joint);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_joint_set_limits(JointId joint, long lower, long upper);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_joint_set_length(JointId joint, long length);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern Vec2 tandem_joint_reaction_force(JointId joint);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_scene_load_file(byte[] path, out ObjectId scene);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_scene_destroy(ObjectId scene);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_scene_get_info(ObjectId scene, out SceneInfo info);
@@ -171,6 +204,23 @@ public sealed class World : IDisposable {
     return bytes;
   }
   public void Restore(byte[] image) { Native.Check(Native.tandem_world_restore(Id, image, (UIntPtr)image.Length)); }
+  public Joint CreateDistanceJoint(DistanceJointDef def) {
+    JointId j;
+    Native.Check(Native.tandem_create_distance_joint(Id, ref def, out j));
+    return new Joint(j);
+  }
+}
+
+/// <summary>A joint handle (a value); Index1 0 is null.</summary>
+public struct Joint {
+  public JointId Id;
+  public Joint(JointId id) { Id = id; }
+  public bool IsNull { get { return Id.Index1 == 0; } }
+  public void SetLimits(long lower, long upper) { Native.Check(Native.tandem_joint_set_limits(Id, lower, upper)); }
+  public void SetLength(long length) { Native.Check(Native.tandem_joint_set_length(Id, length)); }
+  /// <summary>Force on body B during the last sub-step, N (raw Q32.32).</summary>
+  public Vec2 ReactionForce { get { return Native.tandem_joint_reaction_force(Id); } }
+  public void Destroy() { Native.Check(Native.tandem_destroy_joint(Id)); Id = new JointId(); }
 }
 
 /// <summary>A body handle (a value).</summary>
@@ -178,6 +228,7 @@ public struct Body {
   public BodyId Id;
   public Body(BodyId id) { Id = id; }
   public Vec2 Position { get { return Native.tandem_body_position(Id); } }
+  public Vec2 LocalPoint(Vec2 worldPoint) { return Native.tandem_body_local_point(Id, worldPoint); }
   public ShapeId AddBox(long halfWidth, long halfHeight) {
     Polygon box;
     Native.Check(Native.tandem_make_box(halfWidth, halfHeight, out box));

@@ -1,6 +1,9 @@
 """tandem.py — Tandem from Python: ctypes over libtandem.so (the C API,
 capi/include/tandem_c.h), plus a thin Pythonic layer: World, Body, Scene,
-step, state hash, snapshot and restore.
+step, state hash, snapshot and restore, joints (Joint: revolute, distance,
+rope, weld, prismatic, wheel, motor, mouse), the per-stage profile, and the
+lockstep/rollback session (tandem_session.py: Session, over a transport
+given as a Python function).
 
 Numbers: every physical quantity is a raw Q32.32 integer at the C boundary.
 Here `q("0.1")`, `q(3)` or `q(Fraction(1, 60))` make one exactly (text goes
@@ -27,13 +30,16 @@ loader's path (LD_LIBRARY_PATH, the install prefix's lib directory).
 import ctypes
 import os
 from ctypes import POINTER, Structure, byref, c_bool, c_char_p, c_double, c_int32, c_int64, c_size_t, c_uint8
-from ctypes import c_uint16, c_uint32, c_uint64
+from ctypes import c_uint16, c_uint32, c_uint64, c_void_p
 from fractions import Fraction
 
-__all__ = ["TandemError", "World", "Body", "Scene", "q", "to_text", "to_float", "Fraction", "STATIC", "KINEMATIC",
-           "DYNAMIC", "lib"]
+__all__ = ["TandemError", "World", "Body", "Joint", "Scene", "command", "q", "to_text", "to_float",
+           "Fraction", "STATIC", "KINEMATIC", "DYNAMIC", "LOCKSTEP", "ROLLBACK", "lib"]
 
 STATIC, KINEMATIC, DYNAMIC = 0, 1, 2
+LOCKSTEP, ROLLBACK = 0, 1
+JOINT_KINDS = ["revolute", "distance", "weld", "prismatic", "mouse", "wheel", "motor"]  # TANDEM_JOINT_* order
+STEPPED, STALLED, STOPPED = 0, 1, 2
 
 # --- C structs (tandem_c.h) --------------------------------------------------------
 q32 = c_int64
@@ -107,6 +113,78 @@ class Polygon(Structure):
                 ("count", c_int32)]
 
 
+class JointId(Structure):
+    _fields_ = [("index1", c_uint32), ("generation", c_uint32), ("world", WorldId)]
+
+
+class JointBaseDef(Structure):
+    _fields_ = [("body_a", BodyId), ("body_b", BodyId), ("local_anchor_a", Vec2), ("local_anchor_b", Vec2),
+                ("collide_connected", c_bool), ("break_force", q32), ("break_torque", q32), ("user_data", c_uint64)]
+
+
+def _joint_def(name, fields):
+    return type(name, (Structure,), {"_fields_": [("base", JointBaseDef)] + fields + [("internal_cookie", c_int32)]})
+
+
+RevoluteJointDef = _joint_def("RevoluteJointDef", [
+    ("reference_angle", q32), ("enable_limit", c_bool), ("lower_angle", q32), ("upper_angle", q32),
+    ("enable_motor", c_bool), ("motor_speed", q32), ("max_motor_torque", q32), ("enable_spring", c_bool),
+    ("hertz", q32), ("damping_ratio", q32)])
+DistanceJointDef = _joint_def("DistanceJointDef", [
+    ("length", q32), ("enable_spring", c_bool), ("hertz", q32), ("damping_ratio", q32), ("enable_limit", c_bool),
+    ("min_length", q32), ("max_length", q32), ("enable_motor", c_bool), ("motor_speed", q32),
+    ("max_motor_force", q32)])
+WeldJointDef = _joint_def("WeldJointDef", [
+    ("reference_angle", q32), ("linear_hertz", q32), ("linear_damping_ratio", q32), ("angular_hertz", q32),
+    ("angular_damping_ratio", q32)])
+PrismaticJointDef = _joint_def("PrismaticJointDef", [
+    ("local_axis_a", Vec2), ("reference_angle", q32), ("enable_limit", c_bool), ("lower_translation", q32),
+    ("upper_translation", q32), ("enable_motor", c_bool), ("motor_speed", q32), ("max_motor_force", q32),
+    ("enable_spring", c_bool), ("hertz", q32), ("damping_ratio", q32)])
+MouseJointDef = _joint_def("MouseJointDef", [
+    ("target", Vec2), ("hertz", q32), ("damping_ratio", q32), ("max_force", q32)])
+WheelJointDef = _joint_def("WheelJointDef", [
+    ("local_axis_a", Vec2), ("enable_spring", c_bool), ("hertz", q32), ("damping_ratio", q32),
+    ("enable_limit", c_bool), ("lower_translation", q32), ("upper_translation", q32), ("enable_motor", c_bool),
+    ("motor_speed", q32), ("max_motor_torque", q32)])
+MotorJointDef = _joint_def("MotorJointDef", [
+    ("linear_offset", Vec2), ("angular_offset", q32), ("max_force", q32), ("max_torque", q32),
+    ("correction_factor", q32)])
+
+
+class JointEvent(Structure):
+    _fields_ = [("joint", JointId), ("body_a", BodyId), ("body_b", BodyId), ("kind", c_int32), ("force", Vec2),
+                ("torque", q32), ("user_data", c_uint64)]
+
+
+_PROFILE_STAGES = ["broad_phase_ns", "narrow_phase_ns", "islands_ns", "events_ns", "prepare_ns",
+                   "integrate_velocities_ns", "warm_start_ns", "solve_ns", "integrate_positions_ns", "relax_ns",
+                   "restitution_ns", "store_impulses_ns", "continuous_ns", "finalize_ns", "total_ns"]
+
+
+class WorldProfile(Structure):
+    _fields_ = [(name, c_int64) for name in _PROFILE_STAGES]
+
+
+class JointSpec(Structure):
+    _fields_ = [("type", c_int32), ("body_a_index", c_uint32), ("body_a_generation", c_uint32),
+                ("body_b_index", c_uint32), ("body_b_generation", c_uint32), ("local_anchor_a", Vec2),
+                ("local_anchor_b", Vec2), ("collide_connected", c_bool), ("break_force", q32),
+                ("break_torque", q32), ("user_data", c_uint64), ("local_axis", Vec2), ("reference_angle", q32),
+                ("enable_spring", c_bool), ("enable_limit", c_bool), ("enable_motor", c_bool), ("hertz", q32),
+                ("damping_ratio", q32), ("angular_hertz", q32), ("angular_damping_ratio", q32), ("length", q32),
+                ("lower", q32), ("upper", q32), ("motor_speed", q32), ("motor_force", q32), ("target", Vec2),
+                ("angular_offset", q32), ("max_force", q32), ("max_torque", q32), ("correction_factor", q32)]
+
+
+class Command(Structure):  # tandem_command (shapes of create_body: not wrapped here)
+    _fields_ = [("type", c_int32), ("body_index", c_uint32), ("body_generation", c_uint32), ("body_def", BodyDef),
+                ("shapes", c_void_p), ("shape_count", c_int32), ("vector", Vec2), ("point", Vec2),
+                ("at_center", c_bool), ("scalar", q32), ("rotation", Rot), ("flag", c_bool),
+                ("joint_index", c_uint32), ("joint_generation", c_uint32), ("joint_spec", JointSpec),
+                ("scalar2", q32)]
+
+
 class SceneInfo(Structure):
     _fields_ = [("step_hz", c_int32), ("time_step", q32), ("ticks", c_int64), ("body_count", c_int32),
                 ("input_count", c_int32)]
@@ -160,6 +238,31 @@ _fn("tandem_body_state_hash", c_uint64, BodyId)
 _fn("tandem_make_box", _status, q32, q32, POINTER(Polygon))
 _fn("tandem_create_polygon_shape", _status, BodyId, POINTER(ShapeDef), POINTER(Polygon), POINTER(ShapeId))
 _fn("tandem_create_circle_shape", _status, BodyId, POINTER(ShapeDef), POINTER(Circle), POINTER(ShapeId))
+_fn("tandem_vec2_distance", q32, Vec2, Vec2)
+_fn("tandem_body_local_point", Vec2, BodyId, Vec2)
+_fn("tandem_world_get_profile", WorldProfile, WorldId)
+for _kind, _def in [("revolute", RevoluteJointDef), ("distance", DistanceJointDef), ("weld", WeldJointDef),
+                    ("prismatic", PrismaticJointDef), ("mouse", MouseJointDef), ("wheel", WheelJointDef),
+                    ("motor", MotorJointDef)]:
+    _fn(f"tandem_default_{_kind}_joint_def", _def)
+    _fn(f"tandem_create_{_kind}_joint", _status, WorldId, POINTER(_def), POINTER(JointId))
+_fn("tandem_destroy_joint", _status, JointId)
+_fn("tandem_joint_is_valid", c_bool, JointId)
+_fn("tandem_joint_type", c_int32, JointId)
+_fn("tandem_joint_reaction_force", Vec2, JointId)
+_fn("tandem_joint_reaction_torque", q32, JointId)
+_fn("tandem_joint_angle", q32, JointId)
+_fn("tandem_joint_translation", q32, JointId)
+_fn("tandem_joint_world_anchor_b", Vec2, JointId)
+for _name, _args in [("enable_motor", [c_bool]), ("set_motor_speed", [q32]), ("set_max_motor_force", [q32]),
+                     ("enable_limit", [c_bool]), ("set_limits", [q32, q32]), ("enable_spring", [c_bool]),
+                     ("set_spring", [q32, q32]), ("set_length", [q32]), ("set_target", [Vec2]),
+                     ("set_offsets", [Vec2, q32]), ("set_break_thresholds", [q32, q32])]:
+    _fn(f"tandem_joint_{_name}", _status, JointId, *_args)
+_fn("tandem_world_joint_events", _status, WorldId, POINTER(JointEvent), c_int32, POINTER(c_int32))
+_fn("tandem_default_command", Command, c_int32)
+_fn("tandem_command_list_push", _status, c_void_p, POINTER(Command))
+_fn("tandem_bytes_assign", _status, c_void_p, POINTER(c_uint8), c_size_t)
 _fn("tandem_scene_load_file", _status, c_char_p, POINTER(ObjectId))
 _fn("tandem_scene_load_text", _status, c_char_p, c_size_t, c_char_p, POINTER(ObjectId))
 _fn("tandem_scene_destroy", _status, ObjectId)
@@ -214,28 +317,24 @@ def to_float(raw):
 
 
 def _vec(xy):
-    return Vec2(q(xy[0]), q(xy[1]))
+    """A Vec2 from a pair of numbers (as for q()); a Vec2 (raw) passes through."""
+    return xy if isinstance(xy, Vec2) else Vec2(q(xy[0]), q(xy[1]))
 
 
 # --- objects ------------------------------------------------------------------------------
-class World:
-    """A physics world (destroyed by close() or at garbage collection)."""
+class _Owned:
+    """Something the library owns for us, named by self.id: close() (idempotent,
+    also at garbage collection and at the end of a with block) calls
+    _destroy(id) unless _alive(id) says it is gone already."""
 
-    def __init__(self, gravity=None, world_id=None, **settings):
-        if world_id is None:
-            d = lib.tandem_default_world_def()
-            if gravity is not None:
-                d.gravity = _vec(gravity)
-            for key, value in settings.items():
-                setattr(d, key, value)
-            world_id = WorldId()
-            _check(lib.tandem_create_world(byref(d), byref(world_id)))
-        self.id = world_id
+    id = None
+
+    def _alive(self, _id):
+        return True
 
     def close(self):
-        """Destroys the world (idempotent)."""
-        if self.id is not None and lib.tandem_world_is_valid(self.id):
-            _check(lib.tandem_destroy_world(self.id))
+        if self.id is not None and self._alive(self.id):
+            _check(self._destroy(self.id))
         self.id = None
 
     def __del__(self):
@@ -249,6 +348,24 @@ class World:
 
     def __exit__(self, *exc):
         self.close()
+
+
+class World(_Owned):
+    """A physics world (destroyed by close() or at garbage collection)."""
+
+    _destroy = staticmethod(lambda world_id: lib.tandem_destroy_world(world_id))
+    _alive = staticmethod(lambda world_id: lib.tandem_world_is_valid(world_id))
+
+    def __init__(self, gravity=None, world_id=None, **settings):
+        if world_id is None:
+            d = lib.tandem_default_world_def()
+            if gravity is not None:
+                d.gravity = _vec(gravity)
+            for key, value in settings.items():
+                setattr(d, key, value)
+            world_id = WorldId()
+            _check(lib.tandem_create_world(byref(d), byref(world_id)))
+        self.id = world_id
 
     def step(self, time_step):
         """Advances by time_step seconds (raw Q32.32; see q()); returns the step flags."""
@@ -304,6 +421,45 @@ class World:
         """Replaces the state with an image (validated first; refused: unchanged)."""
         buf = (c_uint8 * len(image)).from_buffer_copy(image)
         _check(lib.tandem_world_restore(self.id, buf, len(image)))
+
+    def create_joint(self, kind, body_a, body_b, anchor_a=(0, 0), anchor_b=(0, 0), **fields):
+        """Creates a joint of `kind` ("revolute", "distance", "weld", "prismatic",
+        "mouse", "wheel", "motor") between two Bodies; anchors in each body's
+        frame (m); other fields of the kind's definition by name (numbers as
+        for q(), bools, vectors as pairs). Returns a Joint."""
+        d = getattr(lib, f"tandem_default_{kind}_joint_def")()
+        d.base.body_a, d.base.body_b = body_a.id, body_b.id
+        d.base.local_anchor_a, d.base.local_anchor_b = _vec(anchor_a), _vec(anchor_b)
+        for key, value in fields.items():
+            target = d.base if key in ("collide_connected", "break_force", "break_torque", "user_data") else d
+            old = getattr(target, key)
+            if isinstance(old, Vec2):
+                value = _vec(value)
+            elif isinstance(old, int) and not isinstance(old, bool) and not isinstance(value, bool):
+                value = q(value) if key != "user_data" else value
+            setattr(target, key, value)
+        joint = JointId()
+        _check(getattr(lib, f"tandem_create_{kind}_joint")(self.id, byref(d), byref(joint)))
+        return Joint(joint)
+
+    def create_rope(self, body_a, body_b, length, anchor_a=(0, 0), anchor_b=(0, 0)):
+        """A rope: a distance joint that only pulls, never longer than `length` m."""
+        return self.create_joint("distance", body_a, body_b, anchor_a, anchor_b, length=length, enable_spring=True,
+                                 enable_limit=True, min_length=0, max_length=length)
+
+    def joint_events(self):
+        """Joints gone in the last step: [(joint, kind, force, torque, user_data)]
+        (kind 0 broke, 1 destroyed with a body)."""
+        n = c_int32()
+        _check(lib.tandem_world_joint_events(self.id, None, 0, byref(n)))
+        arr = (JointEvent * n.value)()
+        _check(lib.tandem_world_joint_events(self.id, arr, n.value, byref(n)))
+        return [(Joint(e.joint), e.kind, (e.force.x, e.force.y), e.torque, e.user_data) for e in arr]
+
+    def profile(self):
+        """Wall-clock nanoseconds per stage of the last step (timing only): a dict."""
+        p = lib.tandem_world_get_profile(self.id)
+        return {name: getattr(p, name) for name in _PROFILE_STAGES}
 
     @classmethod
     def from_snapshot(cls, image):
@@ -375,8 +531,10 @@ class Body:
         _check(lib.tandem_destroy_body(self.id))
 
 
-class Scene:
+class Scene(_Owned):
     """A JSON scene file (docs/scene-format.md), loaded and ready to build."""
+
+    _destroy = staticmethod(lambda scene_id: lib.tandem_scene_destroy(scene_id))
 
     def __init__(self, path=None, text=None, name="scene"):
         self.id = ObjectId()
@@ -389,17 +547,6 @@ class Scene:
         _check(lib.tandem_scene_get_info(self.id, byref(info)))
         self.step_hz, self.time_step, self.ticks = info.step_hz, info.time_step, info.ticks
         self.body_count, self.input_count = info.body_count, info.input_count
-
-    def close(self):
-        if self.id is not None:
-            _check(lib.tandem_scene_destroy(self.id))
-        self.id = None
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
 
     def build(self):
         """A new World built from the scene."""
@@ -430,3 +577,75 @@ class Scene:
                     marks.append((tick + 1, world.state_hash()))
             marks.append((ticks, world.state_hash()))
             return marks
+
+
+class Joint:
+    """A joint handle (a value; stale once destroyed or broken: calls then raise)."""
+
+    def __init__(self, joint_id):
+        self.id = joint_id
+
+    @property
+    def valid(self):
+        return lib.tandem_joint_is_valid(self.id)
+
+    @property
+    def kind(self):
+        return JOINT_KINDS[lib.tandem_joint_type(self.id)]
+
+    @property
+    def reaction_force(self):
+        """Force on body B in the last sub-step, N (raw x, y)."""
+        f = lib.tandem_joint_reaction_force(self.id)
+        return (f.x, f.y)
+
+    @property
+    def reaction_torque(self):
+        return lib.tandem_joint_reaction_torque(self.id)
+
+    @property
+    def angle(self):
+        return lib.tandem_joint_angle(self.id)
+
+    @property
+    def translation(self):
+        """Prismatic/wheel translation or the distance joint's current length, m (raw)."""
+        return lib.tandem_joint_translation(self.id)
+
+    def set_motor(self, speed, max_force, enable=True):
+        """Motor speed (rad/s or m/s) and max torque/force (N·m or N)."""
+        _check(lib.tandem_joint_enable_motor(self.id, enable))
+        _check(lib.tandem_joint_set_motor_speed(self.id, q(speed)))
+        _check(lib.tandem_joint_set_max_motor_force(self.id, q(max_force)))
+
+    def set_limits(self, lower, upper, enable=True):
+        _check(lib.tandem_joint_enable_limit(self.id, enable))
+        _check(lib.tandem_joint_set_limits(self.id, q(lower), q(upper)))
+
+    def set_spring(self, hertz, damping_ratio, enable=True):
+        _check(lib.tandem_joint_enable_spring(self.id, enable))
+        _check(lib.tandem_joint_set_spring(self.id, q(hertz), q(damping_ratio)))
+
+    def set_length(self, length):
+        _check(lib.tandem_joint_set_length(self.id, q(length)))
+
+    def set_target(self, target):
+        _check(lib.tandem_joint_set_target(self.id, _vec(target)))
+
+    def set_offsets(self, linear, angular):
+        _check(lib.tandem_joint_set_offsets(self.id, _vec(linear), q(angular)))
+
+    def set_break_thresholds(self, force, torque):
+        _check(lib.tandem_joint_set_break_thresholds(self.id, q(force), q(torque)))
+
+    def destroy(self):
+        _check(lib.tandem_destroy_joint(self.id))
+
+
+def command(type, **fields):
+    """An engine command (tandem_command, TANDEM_COMMAND_* type) with fields set by name."""
+    c = lib.tandem_default_command(type)
+    for key, value in fields.items():
+        setattr(c, key, value)
+    return c
+

@@ -1,8 +1,9 @@
 # run_csharp.cmake — ctest capi/csharp (cmake -P): compiles bindings/csharp
 # with mcs, runs it under mono against the built libtandem.so, and checks
 # that (1) its hash lines equal the C example's and (2) its run of SCENE ends
-# with the final hash `tandem run SCENE` prints.
-foreach(var MCS MONO SOURCE_DIR WORK_DIR LIBRARY C_EXAMPLE CLI SCENE)
+# with the final hash `tandem run SCENE` prints; and that (3) Rope.cs (the
+# README's grappling hook) prints the C++ reference's hashes (ROPE_NATIVE).
+foreach(var MCS MONO SOURCE_DIR WORK_DIR LIBRARY C_EXAMPLE CLI SCENE ROPE_NATIVE)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_csharp.cmake: ${var} is not set")
   endif()
@@ -12,6 +13,11 @@ execute_process(COMMAND ${MCS} -nologo -warnaserror -out:${WORK_DIR}/Hello.exe $
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "mcs failed:\n${out}")
+endif()
+execute_process(COMMAND ${MCS} -nologo -warnaserror -out:${WORK_DIR}/Rope.exe ${SOURCE_DIR}/Tandem.cs ${SOURCE_DIR}/Rope.cs
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "mcs failed on Rope.cs:\n${out}")
 endif()
 # The README's C# block compiles and runs as written (wrapped in a Main).
 get_filename_component(readme ${SOURCE_DIR}/../../README.md ABSOLUTE)
@@ -59,4 +65,15 @@ endif()
 if(NOT cs MATCHES "rollback ok" OR NOT cs MATCHES "error as expected: .*1.2x")
   message(FATAL_ERROR "C# example output incomplete")
 endif()
+execute_process(COMMAND ${MONO} ${WORK_DIR}/Rope.exe RESULT_VARIABLE rc OUTPUT_VARIABLE cs_rope ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "mono Rope.exe failed (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${ROPE_NATIVE} RESULT_VARIABLE rc OUTPUT_VARIABLE native_rope)
+string(REGEX MATCHALL "rope tick [0-9]+ hash 0x[0-9a-f]+" cs_rope_lines "${cs_rope}")
+string(REGEX MATCHALL "rope tick [0-9]+ hash 0x[0-9a-f]+" native_rope_lines "${native_rope}")
+if(NOT rc EQUAL 0 OR NOT native_rope_lines OR NOT cs_rope_lines STREQUAL native_rope_lines)
+  message(FATAL_ERROR "C# rope '${cs_rope_lines}' differs from the C++ rope '${native_rope_lines}'")
+endif()
+message(STATUS "C# rope = C++ rope (${native_rope_lines})")
 message(STATUS "C# = C example (${c_hashes}); C# scene = tandem run (${cli_final})")

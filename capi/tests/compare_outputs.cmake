@@ -1,0 +1,22 @@
+# compare_outputs.cmake — ctest capi/example_rope (cmake -P): runs NATIVE (the
+# C++ reference) and OTHER (the same program through the C API) and fails
+# unless both succeed and print the same lines matching PATTERN (at least one).
+foreach(var NATIVE OTHER PATTERN)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "compare_outputs.cmake: ${var} is not set")
+  endif()
+endforeach()
+execute_process(COMMAND ${NATIVE} RESULT_VARIABLE rc_native OUTPUT_VARIABLE native ERROR_VARIABLE err)
+if(NOT rc_native EQUAL 0)
+  message(FATAL_ERROR "${NATIVE} failed (${rc_native}): ${err}")
+endif()
+execute_process(COMMAND ${OTHER} RESULT_VARIABLE rc_other OUTPUT_VARIABLE other ERROR_VARIABLE err)
+if(NOT rc_other EQUAL 0)
+  message(FATAL_ERROR "${OTHER} failed (${rc_other}): ${err}")
+endif()
+string(REGEX MATCHALL "${PATTERN}" native_lines "${native}")
+string(REGEX MATCHALL "${PATTERN}" other_lines "${other}")
+if(NOT native_lines OR NOT native_lines STREQUAL other_lines)
+  message(FATAL_ERROR "outputs differ:\nnative:\n${native}\nthrough the C API:\n${other}")
+endif()
+message(STATUS "same lines:\n${other}")
