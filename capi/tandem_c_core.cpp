@@ -137,8 +137,8 @@ tandem_status tandem_make_box(tandem_q32 half_width, tandem_q32 half_height, tan
   if (out_polygon == nullptr) return null_pointer(fn, "out_polygon");
   return guard(fn, [&] {
     Polygon p;
-    const GeometryStatus g = make_box(q(half_width), q(half_height), &p);
-    if (g.ok) *out_polygon = to_c(p);
+    const Status g = make_box(q(half_width), q(half_height), &p);
+    if (g.ok()) *out_polygon = to_c(p);
     return geometry(fn, g);
   });
 }
@@ -149,8 +149,8 @@ tandem_status tandem_make_offset_box(tandem_q32 half_width, tandem_q32 half_heig
   if (out_polygon == nullptr) return null_pointer(fn, "out_polygon");
   return guard(fn, [&] {
     Polygon p;
-    const GeometryStatus g = make_offset_box(q(half_width), q(half_height), to_cpp(center), q(angle), q(radius), &p);
-    if (g.ok) *out_polygon = to_c(p);
+    const Status g = make_offset_box(q(half_width), q(half_height), to_cpp(center), q(angle), q(radius), &p);
+    if (g.ok()) *out_polygon = to_c(p);
     return geometry(fn, g);
   });
 }
@@ -168,8 +168,8 @@ tandem_status tandem_make_polygon(const tandem_vec2* points, int32_t count, tand
     std::vector<Vec2> pts;
     for (int32_t i = 0; i < count; ++i) pts.push_back(to_cpp(points[i]));
     Polygon p;
-    const GeometryStatus g = make_polygon_from_points(pts.data(), count, q(radius), &p);
-    if (g.ok) *out_polygon = to_c(p);
+    const Status g = make_polygon_from_points(pts.data(), count, q(radius), &p);
+    if (g.ok()) *out_polygon = to_c(p);
     return geometry(fn, g);
   });
 }

@@ -340,8 +340,8 @@ inline tandem_manifold to_c(const Manifold& m) {
   return o;
 }
 
-inline tandem_status geometry(const char* fn, const GeometryStatus& g) {
-  return g.ok ? succeed() : fail(TANDEM_ERROR_INVALID_ARGUMENT, std::string(fn) + ": " + g.message);
+inline tandem_status geometry(const char* fn, const Status& g) {
+  return g.ok() ? succeed() : fail(TANDEM_ERROR_INVALID_ARGUMENT, std::string(fn) + ": " + g.message);
 }
 
 // --- registries for library-owned objects ----------------------------------------

@@ -10,7 +10,7 @@ TEST_CASE("the same world through C and C++ hashes the same every tick", "[capi]
   {
     const BodyId ground = create_body(cw, default_body_def()).value;
     Polygon g;
-    REQUIRE(make_offset_box(Q32::from_int(20), Q32::from_int(1), vec2(0, -1), Q32{}, Q32{}, &g).ok);
+    REQUIRE(make_offset_box(Q32::from_int(20), Q32::from_int(1), vec2(0, -1), Q32{}, Q32{}, &g).ok());
     REQUIRE(create_polygon_shape(ground, default_shape_def(), g).ok());
     const Vec2 chain[] = {vec2(-12, 4), vec2(-10, 0), vec2(-6, 0), vec2(-4, 1)};
     REQUIRE(create_chain_shapes(ground, default_shape_def(), chain, 4, false, nullptr).ok());
@@ -57,7 +57,7 @@ TEST_CASE("the same world through C and C++ hashes the same every tick", "[capi]
       REQUIRE(tandem_create_capsule_shape(cb, &csd, &ccap, &cs) == TANDEM_OK);
     } else {
       Polygon p;
-      REQUIRE(make_offset_box(Q32::from_ratio(3, 10), Q32::from_ratio(2, 10), Vec2{}, Q32::from_ratio(1, 5), Q32{}, &p).ok);
+      REQUIRE(make_offset_box(Q32::from_ratio(3, 10), Q32::from_ratio(2, 10), Vec2{}, Q32::from_ratio(1, 5), Q32{}, &p).ok());
       REQUIRE(create_polygon_shape(b, sd, p).ok());
       tandem_polygon cp;
       REQUIRE(tandem_make_offset_box(Q32::from_ratio(3, 10).raw, Q32::from_ratio(2, 10).raw, {0, 0}, Q32::from_ratio(1, 5).raw, 0, &cp) == TANDEM_OK);
@@ -90,7 +90,7 @@ TEST_CASE("the same world through C and C++ hashes the same every tick", "[capi]
     INFO("tick " << tick + 1);
     REQUIRE(world_state_hash(cw) == tandem_world_state_hash(c.id));
   }
-  destroy_world(cw);
+  CHECK(destroy_world(cw).ok());
 }
 
 TEST_CASE("every bundled scene through the C scene API hashes as through C++", "[capi][determinism]") {
@@ -118,7 +118,7 @@ TEST_CASE("every bundled scene through the C scene API hashes as through C++", "
       INFO("tick " << tick + 1);
       REQUIRE(world_state_hash(built.value.world) == tandem_world_state_hash(cw));
     }
-    destroy_world(built.value.world);
+    (void)destroy_world(built.value.world);
     REQUIRE(tandem_destroy_world(cw) == TANDEM_OK);
     REQUIRE(tandem_scene_destroy(cs) == TANDEM_OK);
   }

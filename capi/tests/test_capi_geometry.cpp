@@ -34,7 +34,7 @@ TEST_CASE("geometry: validation, mass, bounds, point tests, ray casts and manifo
   Polygon cpoly;
   REQUIRE(make_offset_box(Q32::from_ratio(3, 4), Q32::from_ratio(1, 2), Vec2{Q32{}, parse_q32("0.1").value},
                           parse_q32("0.2").value, Q32{}, &cpoly)
-              .ok);
+              .ok());
 
   // Validation.
   CHECK(tandem_validate_circle(&circle.circle) == TANDEM_OK);
@@ -168,7 +168,7 @@ TEST_CASE("geometry: distance, shape cast, sweeps and time of impact equal C++",
   Polygon cpoly;
   REQUIRE(make_offset_box(Q32::from_ratio(3, 4), Q32::from_ratio(1, 2), Vec2{Q32{}, parse_q32("0.1").value},
                           parse_q32("0.2").value, Q32{}, &cpoly)
-              .ok);
+              .ok());
   const ShapeProxy cpa = make_proxy(cpoly);
   const ShapeProxy cpb = make_proxy(Circle{cpp(circle.circle.center), Q32::from_raw(circle.circle.radius)});
   const tandem_transform at0 = {{0, 0}, tandem_rot_identity()};

@@ -317,14 +317,14 @@ TEST_CASE("session: two C peers over a loopback confirm the C++ reference hashes
   {
     const BodyId ground = create_body(ref, default_body_def()).value;
     Polygon box;
-    REQUIRE(make_offset_box(Q32::from_int(20), Q32::from_int(1), vec2(0, -1), Q32{}, Q32{}, &box).ok);
+    REQUIRE(make_offset_box(Q32::from_int(20), Q32::from_int(1), vec2(0, -1), Q32{}, Q32{}, &box).ok());
     REQUIRE(create_polygon_shape(ground, default_shape_def(), box).ok());
     for (int32_t p = 0; p < static_cast<int32_t>(k_players); ++p) {
       BodyDef def = default_body_def();
       def.type = BodyType::dynamic_body;
       def.position = vec2(p * 3 - 1, 2);
       const BodyId b = create_body(ref, def).value;
-      REQUIRE(make_box(Q32::from_ratio(1, 2), Q32::from_ratio(1, 2), &box).ok);
+      REQUIRE(make_box(Q32::from_ratio(1, 2), Q32::from_ratio(1, 2), &box).ok());
       REQUIRE(create_polygon_shape(b, default_shape_def(), box).ok());
     }
   }
