@@ -1,0 +1,659 @@
+// state_internal.h — what the canonical-state files share (internal, not
+// installed): the WorldImage scratch world, the field visitors and the
+// per-record visit functions that define the canonical field order.
+//
+// Files (state.h describes the format):
+//   state_internal.h   visitors, visit_* (field order), shared declarations
+//   state_encode.cpp   sizes, encoding, snapshot and hash API
+//   state_restore.cpp  structural decoding, commit, restore, decode/locate API
+//   state_validate.cpp range and consistency validation of a decoded image
+//   state_diff.cpp     deltas against a base image, field-level diffs
+//
+// DESIGN. Each record kind has ONE visit function (visit_world_def, visit_body,
+// visit_shape, visit_contact, visit_pair, visit_pool) that lists
+// its fields in canonical order with their names. Four visitors walk them:
+//   WriteVisitor     fields → bytes (ByteWriter; a null buffer only counts)
+//   ReadVisitor      bytes → fields (ByteReader; names go into messages)
+//   DescribeVisitor  fields → DecodedRecord named fields (diffs)
+// so encode, decode, size and diff cannot disagree about the order. The
+// exact encoded size is computed arithmetically from per-record sizes that
+// are themselves measured once by running the WriteVisitor in counting mode
+// over default records.
+//
+// Restore decodes into a WorldImage (thread-local scratch, reused so warm
+// rollbacks do not allocate), validates cross references, then copy-assigns
+// its vectors into the World (capacity reused).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "physics/body.h"
+#include "physics/broad_phase.h"
+#include "physics/contact.h"
+#include "physics/events.h"
+#include "physics/id_pool.h"
+#include "physics/island.h"
+#include "physics/limits.h"
+#include "physics/shape.h"
+#include "physics/world.h"
+#include "replay/bytes.h"
+#include "replay/state.h"
+
+namespace tandem::state_detail {
+
+inline constexpr uint32_t k_state_kind_full = 0;
+
+/// Everything restore replaces, decoded and validated before it touches a
+/// world. It is a World (never registered, never stepped) so the physics
+/// functions that derive cached values (shape bounds, body mass, extents) can
+/// run on the image itself for the consistency checks; restore then swaps its
+/// vectors into the target world. Joints are World::joints/joint_pool (empty
+/// for a version-1 image).
+struct WorldImage : World {
+  // Reader only: byte offset of each record, for messages.
+  std::vector<size_t> body_offsets;   // by body index
+  std::vector<size_t> shape_offsets;  // by shape index
+  std::vector<size_t> contact_offsets;
+  std::vector<size_t> joint_offsets;  // by joint index
+};
+
+inline std::vector<PairRecord>& touching_of(World& w) { return w.events.touching; }
+inline std::vector<PairRecord>& sensors_of(World& w) { return w.events.sensor_overlaps; }
+inline std::vector<Joint>& joints_of(World& w) { return w.joints.joints; }
+
+/// The smallest encoded contact record (no points), for read_count.
+size_t min_contact_record_bytes();
+
+// ---------------------------------------------------------------------------
+// Field names that carry an index (built once)
+// ---------------------------------------------------------------------------
+
+inline const char* polygon_name(int32_t i, int32_t which) {
+  // which: 0 vertices.x, 1 vertices.y, 2 normals.x, 3 normals.y
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (int32_t k = 0; k < k_max_polygon_vertices; ++k) {
+      const std::string s = std::to_string(k);
+      n.push_back("vertices[" + s + "].x");
+      n.push_back("vertices[" + s + "].y");
+      n.push_back("normals[" + s + "].x");
+      n.push_back("normals[" + s + "].y");
+    }
+    return n;
+  }();
+  return names[static_cast<size_t>(i * 4 + which)].c_str();
+}
+
+inline constexpr int32_t k_point_field_count = 10;
+
+inline const char* point_name(int32_t i, int32_t which) {
+  static const std::vector<std::string> names = [] {
+    static const char* const fields[k_point_field_count] = {
+        "point.x",    "point.y",    "anchor_a.x", "anchor_a.y",     "anchor_b.x",
+        "anchor_b.y", "separation", "id",         "normal_impulse", "tangent_impulse"};
+    std::vector<std::string> n;
+    for (int32_t k = 0; k < 2; ++k) {
+      for (const char* f : fields) n.push_back("points[" + std::to_string(k) + "]." + f);
+    }
+    return n;
+  }();
+  return names[static_cast<size_t>(i * k_point_field_count + which)].c_str();
+}
+
+// ---------------------------------------------------------------------------
+// Visitors
+// ---------------------------------------------------------------------------
+
+/// Fields → bytes.
+struct WriteVisitor {
+  static constexpr bool k_reading = false;
+  ByteWriter* w;
+  void record(const char*, int64_t, int64_t = -1, uint32_t = 0) {}
+  void tag(const char* t) { w->bytes(reinterpret_cast<const uint8_t*>(t), 4); }
+  void q32(const char*, Q32& v) { w->q32(v); }
+  void vec2(const char*, const char*, Vec2& v) { w->vec2(v); }
+  void i32(const char*, int32_t& v) { w->i32(v); }
+  void u32(const char*, uint32_t& v) { w->u32(v); }
+  /// A list length (a u32; implied by the records when described).
+  void count(const char*, uint32_t& v) { w->u32(v); }
+  void u16(const char*, uint16_t& v) { w->u16(v); }
+  void u64(const char*, uint64_t& v) { w->u64(v); }
+  void boolean(const char*, bool& v) { w->boolean(v); }
+  template <typename E>
+  void enum8(const char*, E& v, int32_t) {
+    w->u8(static_cast<uint8_t>(static_cast<int32_t>(v)));
+  }
+  /// A value that must lie in [lo, hi] (checked when reading).
+  void ranged_i32(const char*, int32_t& v, int32_t, int32_t) { w->i32(v); }
+  bool ok() const { return true; }
+};
+
+/// Bytes → fields, with checks.
+struct ReadVisitor {
+  static constexpr bool k_reading = true;
+  ByteReader* r;
+  void record(const char* kind, int64_t index, int64_t = -1, uint32_t = 0) { r->set_context(kind, index); }
+  void tag(const char* t) {
+    const size_t at = r->offset();
+    const std::span<const uint8_t> b = r->bytes(4, (std::string("section tag ") + t).c_str());
+    if (b.size() == 4 && std::memcmp(b.data(), t, 4) != 0) {
+      r->fail_at(at, std::string("expected section tag \"") + t + "\"");
+    }
+  }
+  void q32(const char* name, Q32& v) {
+    const size_t at = r->offset();
+    v = r->q32(name);
+    if (v.raw == INT64_MIN) r->fail_at(at, "expected " + r->describe_what(name) + " (Q32.32), got raw INT64_MIN");
+  }
+  void vec2(const char* nx, const char* ny, Vec2& v) {
+    q32(nx, v.x);
+    q32(ny, v.y);
+  }
+  void i32(const char* name, int32_t& v) { v = r->i32(name); }
+  void u32(const char* name, uint32_t& v) { v = r->u32(name); }
+  void u16(const char* name, uint16_t& v) { v = r->u16(name); }
+  void u64(const char* name, uint64_t& v) { v = r->u64(name); }
+  void boolean(const char* name, bool& v) { v = r->boolean(name); }
+  template <typename E>
+  void enum8(const char* name, E& v, int32_t max) {
+    const size_t at = r->offset();
+    const uint8_t raw = r->u8(name);
+    if (!r->ok()) return;
+    if (raw > max) {
+      r->fail_at(at, "expected " + r->describe_what(name) + " 0.." + std::to_string(max) + ", got " +
+                         std::to_string(raw));
+      return;
+    }
+    v = static_cast<E>(raw);
+  }
+  void ranged_i32(const char* name, int32_t& v, int32_t lo, int32_t hi) {
+    const size_t at = r->offset();
+    const int32_t x = r->i32(name);
+    if (!r->ok()) return;
+    if (x < lo || x > hi) {
+      r->fail_at(at, "expected " + r->describe_what(name) + " in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "], got " + std::to_string(x));
+      return;
+    }
+    v = x;
+  }
+  bool ok() const { return r->ok(); }
+};
+
+/// Fields → named DecodedRecord fields (over an already decoded image).
+struct DescribeVisitor {
+  static constexpr bool k_reading = false;
+  DecodedState* out;
+  void record(const char* kind, int64_t index, int64_t index2 = -1, uint32_t generation = 0) {
+    DecodedRecord rec;
+    rec.kind = kind;
+    rec.index = index;
+    rec.index2 = index2;
+    rec.generation = generation;
+    out->records.push_back(std::move(rec));
+  }
+  void field(const char* name, int64_t v, bool q) { out->records.back().fields.push_back({name, v, q}); }
+  void tag(const char*) {}
+  void q32(const char* name, Q32& v) { field(name, v.raw, true); }
+  void vec2(const char* nx, const char* ny, Vec2& v) {
+    field(nx, v.x.raw, true);
+    field(ny, v.y.raw, true);
+  }
+  void i32(const char* name, int32_t& v) { field(name, v, false); }
+  void u32(const char* name, uint32_t& v) { field(name, v, false); }
+  void count(const char*, uint32_t&) {}
+  void u16(const char* name, uint16_t& v) { field(name, v, false); }
+  void u64(const char* name, uint64_t& v) { field(name, static_cast<int64_t>(v), false); }
+  void boolean(const char* name, bool& v) { field(name, v ? 1 : 0, false); }
+  template <typename E>
+  void enum8(const char* name, E& v, int32_t) {
+    field(name, static_cast<int32_t>(v), false);
+  }
+  void ranged_i32(const char* name, int32_t& v, int32_t, int32_t) { field(name, v, false); }
+  bool ok() const { return true; }
+};
+
+// ---------------------------------------------------------------------------
+// Records, in canonical field order
+// ---------------------------------------------------------------------------
+
+template <typename V>
+void visit_world_def(V& v, WorldDef& d) {
+  v.vec2("gravity.x", "gravity.y", d.gravity);
+  v.ranged_i32("sub_step_count", d.sub_step_count, 1, k_max_sub_steps);
+  v.q32("contact_hertz", d.contact_hertz);
+  v.q32("contact_damping_ratio", d.contact_damping_ratio);
+  v.q32("max_contact_push_speed", d.max_contact_push_speed);
+  v.q32("joint_hertz", d.joint_hertz);
+  v.q32("joint_damping_ratio", d.joint_damping_ratio);
+  v.q32("restitution_threshold", d.restitution_threshold);
+  v.q32("hit_event_threshold", d.hit_event_threshold);
+  v.q32("max_linear_speed", d.max_linear_speed);
+  v.vec2("bounds.lower.x", "bounds.lower.y", d.bounds.lower);
+  v.vec2("bounds.upper.x", "bounds.upper.y", d.bounds.upper);
+  v.boolean("enable_sleep", d.enable_sleep);
+  v.boolean("enable_continuous", d.enable_continuous);
+  v.enum8("broad_phase", d.broad_phase, static_cast<int32_t>(BroadPhaseKind::tree));
+  v.u64("user_data", d.user_data);
+}
+
+template <typename V>
+void visit_body(V& v, Body& b, BodySim& s) {
+  v.enum8("type", b.type, static_cast<int32_t>(BodyType::dynamic_body));
+  v.i32("head_shape", b.head_shape);
+  v.i32("shape_count", b.shape_count);
+  v.q32("mass", b.mass);
+  v.q32("rotational_inertia", b.rotational_inertia);
+  v.q32("sleep_time", b.sleep_time);
+  v.i32("sleep_island", b.sleep_island);
+  v.u64("user_data", b.user_data);
+  v.boolean("enable_sleep", b.enable_sleep);
+  v.boolean("awake", b.awake);
+  v.boolean("enabled", b.enabled);
+  v.boolean("fixed_rotation", b.fixed_rotation);
+  v.boolean("bullet", b.bullet);
+  v.q32("min_extent", b.min_extent);
+  v.q32("max_extent", b.max_extent);
+  v.vec2("position.x", "position.y", s.transform.p);
+  v.q32("rotation.c", s.transform.q.c);
+  v.q32("rotation.s", s.transform.q.s);
+  v.vec2("center.x", "center.y", s.center);
+  v.vec2("local_center.x", "local_center.y", s.local_center);
+  v.vec2("linear_velocity.x", "linear_velocity.y", s.linear_velocity);
+  v.q32("angular_velocity", s.angular_velocity);
+  v.vec2("force.x", "force.y", s.force);
+  v.q32("torque", s.torque);
+  v.q32("inv_mass", s.inv_mass);
+  v.q32("inv_inertia", s.inv_inertia);
+  v.q32("linear_damping", s.linear_damping);
+  v.q32("angular_damping", s.angular_damping);
+  v.q32("gravity_scale", s.gravity_scale);
+}
+
+template <typename V>
+void visit_shape(V& v, Shape& s, ShapeGeometry& g) {
+  v.i32("body", s.body_index);
+  v.i32("prev_shape", s.prev_shape);
+  v.i32("next_shape", s.next_shape);
+  v.enum8("type", s.type, static_cast<int32_t>(ShapeType::chain_segment));
+  v.q32("friction", s.friction);
+  v.q32("restitution", s.restitution);
+  v.q32("density", s.density);
+  v.u64("filter.category_bits", s.filter.category_bits);
+  v.u64("filter.mask_bits", s.filter.mask_bits);
+  v.i32("filter.group_index", s.filter.group_index);
+  v.u64("user_data", s.user_data);
+  v.vec2("aabb.lower.x", "aabb.lower.y", s.aabb.lower);
+  v.vec2("aabb.upper.x", "aabb.upper.y", s.aabb.upper);
+  v.boolean("is_sensor", s.is_sensor);
+  v.boolean("enable_hit_events", s.enable_hit_events);
+  if (!v.ok()) return;
+  if constexpr (V::k_reading) g.type = s.type;
+  switch (s.type) {
+    case ShapeType::circle:
+      v.vec2("circle.center.x", "circle.center.y", g.circle.center);
+      v.q32("circle.radius", g.circle.radius);
+      break;
+    case ShapeType::capsule:
+      v.vec2("capsule.center1.x", "capsule.center1.y", g.capsule.center1);
+      v.vec2("capsule.center2.x", "capsule.center2.y", g.capsule.center2);
+      v.q32("capsule.radius", g.capsule.radius);
+      break;
+    case ShapeType::segment:
+      v.vec2("segment.point1.x", "segment.point1.y", g.segment.point1);
+      v.vec2("segment.point2.x", "segment.point2.y", g.segment.point2);
+      break;
+    case ShapeType::polygon: {
+      Polygon& p = g.polygon;
+      v.ranged_i32("polygon.count", p.count, 3, k_max_polygon_vertices);
+      if (!v.ok()) return;
+      const int32_t n = std::clamp(p.count, int32_t{0}, k_max_polygon_vertices);
+      for (int32_t i = 0; i < n; ++i) {
+        v.vec2(polygon_name(i, 0), polygon_name(i, 1), p.vertices[static_cast<size_t>(i)]);
+      }
+      for (int32_t i = 0; i < n; ++i) {
+        v.vec2(polygon_name(i, 2), polygon_name(i, 3), p.normals[static_cast<size_t>(i)]);
+      }
+      v.vec2("polygon.centroid.x", "polygon.centroid.y", p.centroid);
+      v.q32("polygon.radius", p.radius);
+      break;
+    }
+    case ShapeType::chain_segment:
+      v.vec2("chain.ghost1.x", "chain.ghost1.y", g.chain_segment.ghost1);
+      v.vec2("chain.point1.x", "chain.point1.y", g.chain_segment.segment.point1);
+      v.vec2("chain.point2.x", "chain.point2.y", g.chain_segment.segment.point2);
+      v.vec2("chain.ghost2.x", "chain.ghost2.y", g.chain_segment.ghost2);
+      v.i32("chain.chain_id", g.chain_segment.chain_id);
+      break;
+    case ShapeType::count:
+      break;
+  }
+}
+
+template <typename V>
+void visit_contact(V& v, Contact& c) {
+  v.i32("shape_a", c.shape_a);
+  v.i32("shape_b", c.shape_b);
+  v.u32("generation_a", c.generation_a);
+  v.u32("generation_b", c.generation_b);
+  v.i32("body_a", c.body_a);
+  v.i32("body_b", c.body_b);
+  v.u32("flags", c.flags);
+  v.q32("friction", c.friction);
+  v.q32("restitution", c.restitution);
+  v.vec2("normal.x", "normal.y", c.manifold.normal);
+  v.ranged_i32("point_count", c.manifold.point_count, 0, 2);
+  if (!v.ok()) return;
+  const int32_t n = std::clamp(c.manifold.point_count, int32_t{0}, int32_t{2});
+  for (int32_t i = 0; i < n; ++i) {
+    ManifoldPoint& p = c.manifold.points[static_cast<size_t>(i)];
+    v.vec2(point_name(i, 0), point_name(i, 1), p.point);
+    v.vec2(point_name(i, 2), point_name(i, 3), p.anchor_a);
+    v.vec2(point_name(i, 4), point_name(i, 5), p.anchor_b);
+    v.q32(point_name(i, 6), p.separation);
+    v.u16(point_name(i, 7), p.id);
+    v.q32(point_name(i, 8), c.normal_impulse[static_cast<size_t>(i)]);
+    v.q32(point_name(i, 9), c.tangent_impulse[static_cast<size_t>(i)]);
+  }
+}
+
+/// A joint record (version 2): settings, accumulated impulses and the last
+/// reaction; the per-step scratch is not state.
+template <typename V>
+void visit_joint(V& v, Joint& j) {
+  v.enum8("type", j.type, static_cast<int32_t>(JointType::motor));
+  v.i32("body_a", j.body_a);
+  v.i32("body_b", j.body_b);
+  v.vec2("local_anchor_a.x", "local_anchor_a.y", j.local_anchor_a);
+  v.vec2("local_anchor_b.x", "local_anchor_b.y", j.local_anchor_b);
+  v.vec2("local_axis_a.x", "local_axis_a.y", j.local_axis_a);
+  v.q32("reference_angle", j.reference_angle);
+  v.boolean("collide_connected", j.collide_connected);
+  v.boolean("enable_spring", j.enable_spring);
+  v.boolean("enable_limit", j.enable_limit);
+  v.boolean("enable_motor", j.enable_motor);
+  v.q32("break_force", j.break_force);
+  v.q32("break_torque", j.break_torque);
+  v.u64("user_data", j.user_data);
+  v.q32("hertz", j.hertz);
+  v.q32("damping_ratio", j.damping_ratio);
+  v.q32("angular_hertz", j.angular_hertz);
+  v.q32("angular_damping_ratio", j.angular_damping_ratio);
+  v.q32("length", j.length);
+  v.q32("lower", j.lower);
+  v.q32("upper", j.upper);
+  v.q32("motor_speed", j.motor_speed);
+  v.q32("max_motor_force", j.max_motor_force);
+  v.vec2("target.x", "target.y", j.target);
+  v.q32("angular_offset", j.angular_offset);
+  v.q32("max_force", j.max_force);
+  v.q32("max_torque", j.max_torque);
+  v.q32("correction_factor", j.correction_factor);
+  v.vec2("linear_impulse.x", "linear_impulse.y", j.linear_impulse);
+  v.q32("angular_impulse", j.angular_impulse);
+  v.q32("axial_impulse", j.axial_impulse);
+  v.q32("spring_impulse", j.spring_impulse);
+  v.q32("motor_impulse", j.motor_impulse);
+  v.q32("lower_impulse", j.lower_impulse);
+  v.q32("upper_impulse", j.upper_impulse);
+  v.vec2("reaction_force.x", "reaction_force.y", j.reaction_force);
+  v.q32("reaction_torque", j.reaction_torque);
+}
+
+template <typename V>
+void visit_pair(V& v, PairRecord& p) {
+  v.i32("shape_a", p.shape_a);
+  v.i32("shape_b", p.shape_b);
+  v.u32("generation_a", p.generation_a);
+  v.u32("generation_b", p.generation_b);
+}
+
+inline constexpr size_t k_slot_bytes = 5;   // generation u32 + alive u8
+inline constexpr size_t k_pair_bytes = 16;
+
+/// Pool slots (generation, alive) after a u32 capacity.
+template <typename V>
+void visit_pool(V& v, IdPool& pool, const char* kind, int32_t max_capacity, ByteReader* reader) {
+  uint32_t capacity = static_cast<uint32_t>(pool.generations.size());
+  if constexpr (V::k_reading) {
+    reader->set_context(kind);
+    capacity = reader->read_count("capacity", k_slot_bytes, static_cast<uint32_t>(max_capacity));
+    if (!reader->ok()) return;
+    pool.generations.assign(capacity, 0);
+    pool.alive.assign(capacity, 0);
+  } else {
+    v.count("capacity", capacity);
+  }
+  for (uint32_t i = 0; i < capacity; ++i) {
+    v.record(kind, i, -1, pool.generations[i]);
+    v.u32("generation", pool.generations[i]);
+    bool alive = pool.alive[i] != 0;
+    v.boolean("alive", alive);
+    if constexpr (V::k_reading) {
+      if (!v.ok()) return;
+      if (pool.generations[i] == 0) {
+        reader->fail_at(reader->offset() - k_slot_bytes, reader->describe_what("generation") + ": expected ≥ 1, got 0");
+        return;
+      }
+      pool.alive[i] = alive ? 1 : 0;
+    }
+  }
+  if constexpr (V::k_reading) {
+    // Free slots in ascending order already form a valid min-heap.
+    pool.free_heap.clear();
+    pool.alive_count = 0;
+    for (uint32_t i = 0; i < capacity; ++i) {
+      if (pool.alive[i] != 0) {
+        ++pool.alive_count;
+      } else {
+        pool.free_heap.push_back(static_cast<int32_t>(i));
+      }
+    }
+  }
+}
+
+/// A sorted pair list after a u32 count.
+template <typename V>
+void visit_pairs(V& v, std::vector<PairRecord>& pairs, const char* kind, ByteReader* reader) {
+  uint32_t n = static_cast<uint32_t>(pairs.size());
+  if constexpr (V::k_reading) {
+    reader->set_context(kind);
+    n = reader->read_count("count", k_pair_bytes);
+    if (!reader->ok()) return;
+    pairs.resize(n);
+  } else {
+    v.count("count", n);
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    v.record(kind, pairs[i].shape_a, pairs[i].shape_b);
+    if constexpr (V::k_reading) reader->set_context(kind, i);
+    visit_pair(v, pairs[i]);
+  }
+}
+
+/// The whole state after the header. `W` is World or WorldImage; `reader` is
+/// non-null only for the ReadVisitor. with_joints: the version-2 joint
+/// sections follow the version-1 ones.
+template <typename V, typename W>
+void visit_world(V& v, W& w, ByteReader* reader, bool with_joints) {
+  v.tag("WRLD");
+  v.record("world", 0);
+  visit_world_def(v, w.def);
+  v.u64("step_count", w.step_count);
+  v.i32("last_solver_body_count", w.last_solver_body_count);
+  if (!v.ok()) return;
+
+  v.tag("BPOL");
+  visit_pool(v, w.body_pool, "body_slot", k_max_bodies, reader);
+  if (!v.ok()) return;
+  const size_t body_capacity = w.body_pool.generations.size();
+  if constexpr (V::k_reading) {
+    w.bodies.assign(body_capacity, Body{});
+    w.body_sims.assign(body_capacity, BodySim{});
+    w.body_offsets.assign(body_capacity, 0);
+  }
+  v.tag("BODY");
+  for (size_t i = 0; i < body_capacity; ++i) {
+    if (w.body_pool.alive[i] == 0) continue;
+    v.record("body", static_cast<int64_t>(i), -1, w.body_pool.generations[i]);
+    if constexpr (V::k_reading) w.body_offsets[i] = reader->offset();
+    visit_body(v, w.bodies[i], w.body_sims[i]);
+    if (!v.ok()) return;
+  }
+
+  v.tag("SPOL");
+  visit_pool(v, w.shape_pool, "shape_slot", k_max_shapes, reader);
+  if (!v.ok()) return;
+  const size_t shape_capacity = w.shape_pool.generations.size();
+  if constexpr (V::k_reading) {
+    w.shapes.assign(shape_capacity, Shape{});
+    w.shape_geometries.assign(shape_capacity, ShapeGeometry{});
+    w.shape_offsets.assign(shape_capacity, 0);
+  }
+  v.tag("SHAP");
+  for (size_t i = 0; i < shape_capacity; ++i) {
+    if (w.shape_pool.alive[i] == 0) continue;
+    v.record("shape", static_cast<int64_t>(i), -1, w.shape_pool.generations[i]);
+    if constexpr (V::k_reading) w.shape_offsets[i] = reader->offset();
+    visit_shape(v, w.shapes[i], w.shape_geometries[i]);
+    if (!v.ok()) return;
+  }
+
+  v.tag("CONT");
+  uint32_t contact_count = static_cast<uint32_t>(w.contacts.size());
+  if constexpr (V::k_reading) {
+    reader->set_context("contacts");
+    contact_count = reader->read_count("count", min_contact_record_bytes());
+    if (!reader->ok()) return;
+    w.contacts.assign(contact_count, Contact{});
+    w.contact_offsets.assign(contact_count, 0);
+  } else {
+    v.count("count", contact_count);
+  }
+  for (uint32_t i = 0; i < contact_count; ++i) {
+    Contact& c = w.contacts[i];
+    v.record("contact", c.shape_a, c.shape_b);
+    if constexpr (V::k_reading) {
+      reader->set_context("contact", i);
+      w.contact_offsets[i] = reader->offset();
+    }
+    visit_contact(v, c);
+    if (!v.ok()) return;
+  }
+
+  v.tag("TUCH");
+  visit_pairs(v, touching_of(w), "touching", reader);
+  if (!v.ok()) return;
+  v.tag("SENS");
+  visit_pairs(v, sensors_of(w), "sensor_overlap", reader);
+  if (!with_joints || !v.ok()) return;
+
+  v.tag("JPOL");
+  visit_pool(v, w.joint_pool, "joint_slot", k_max_bodies, reader);
+  if (!v.ok()) return;
+  const size_t joint_capacity = w.joint_pool.generations.size();
+  std::vector<Joint>& joints = joints_of(w);
+  if constexpr (V::k_reading) {
+    joints.assign(joint_capacity, Joint{});
+    w.joint_offsets.assign(joint_capacity, 0);
+  }
+  v.tag("JOIN");
+  for (size_t i = 0; i < joint_capacity; ++i) {
+    if (w.joint_pool.alive[i] == 0) continue;
+    v.record("joint", static_cast<int64_t>(i), -1, w.joint_pool.generations[i]);
+    if constexpr (V::k_reading) w.joint_offsets[i] = reader->offset();
+    visit_joint(v, joints[i]);
+    if (!v.ok()) return;
+  }
+}
+
+/// Worlds that never had a joint are written as version 1 (the format before
+/// joints, byte for byte); others as version 2 with the joint sections.
+inline bool writes_joints(const World& w) { return !w.joint_pool.generations.empty(); }
+
+/// Finds the byte offset of a named field inside one record by walking the
+/// record's visit function in counting mode.
+struct OffsetVisitor {
+  static constexpr bool k_reading = false;
+  ByteWriter* w;
+  const char* target;
+  size_t found = SIZE_MAX;
+  void mark(const char* name) {
+    if (found == SIZE_MAX && std::strcmp(name, target) == 0) found = w->size();
+  }
+  void record(const char*, int64_t, int64_t = -1, uint32_t = 0) {}
+  void tag(const char*) { w->bytes(reinterpret_cast<const uint8_t*>("TAGS"), 4); }
+  void q32(const char* n, Q32& v) { mark(n); w->q32(v); }
+  void vec2(const char* nx, const char* ny, Vec2& v) {
+    mark(nx);
+    w->q32(v.x);
+    mark(ny);
+    w->q32(v.y);
+  }
+  void i32(const char* n, int32_t& v) { mark(n); w->i32(v); }
+  void u32(const char* n, uint32_t& v) { mark(n); w->u32(v); }
+  void count(const char* n, uint32_t& v) { mark(n); w->u32(v); }
+  void u16(const char* n, uint16_t& v) { mark(n); w->u16(v); }
+  void u64(const char* n, uint64_t& v) { mark(n); w->u64(v); }
+  void boolean(const char* n, bool& v) { mark(n); w->boolean(v); }
+  template <typename E>
+  void enum8(const char* n, E& v, int32_t) {
+    mark(n);
+    w->u8(static_cast<uint8_t>(static_cast<int32_t>(v)));
+  }
+  void ranged_i32(const char* n, int32_t& v, int32_t, int32_t) { mark(n); w->i32(v); }
+  bool ok() const { return true; }
+};
+
+template <typename F>
+size_t field_offset_in(const char* field, F&& visit) {
+  ByteWriter counter(nullptr, 0);
+  OffsetVisitor v{&counter, field};
+  visit(v);
+  return v.found == SIZE_MAX ? 0 : v.found;
+}
+
+// ---------------------------------------------------------------------------
+// Shared between the files (defined where noted)
+// ---------------------------------------------------------------------------
+
+inline constexpr size_t k_header_bytes = 12;  // magic, version, kind
+
+struct RecordSizes {
+  size_t world = 0;           // tag + def + step count + solver count
+  size_t body = 0;
+  size_t shape[5] = {};       // by ShapeType; polygon: with 0 vertices
+  size_t polygon_vertex = 32; // vertex + normal
+  size_t contact = 0;         // with no points
+  size_t contact_point = 0;
+  size_t joint = 0;
+};
+
+// state_encode.cpp
+const RecordSizes& record_sizes();
+size_t shape_record_size(const Shape& s, const ShapeGeometry& g);
+size_t encoded_size(const World& w);
+/// Encodes into buffer[0, capacity); returns the size (> capacity: nothing
+/// past the capacity was written).
+size_t encode_into(World* w, uint8_t* buffer, size_t capacity);
+Status resolve_for_state(WorldId id, const char* function, bool mutating, World** out);
+std::vector<uint8_t>& scratch_bytes();
+
+// state_validate.cpp
+/// Range and consistency checks of a structurally valid image.
+Status validate_image_values(WorldImage* img, const char* function);
+
+// state_restore.cpp
+/// Decodes and validates a full image into *img. Returns an error Status
+/// (invalid_argument, "<function>: offset N: expected ...").
+Status decode_image(const uint8_t* data, size_t size, const char* function, WorldImage* img, uint32_t* out_version);
+/// Replaces the world's state with a validated image (vectors swapped).
+void commit_image(World* w, WorldImage& img);
+WorldImage& scratch_image();
+
+}  // namespace tandem::state_detail
