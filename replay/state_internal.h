@@ -405,6 +405,23 @@ void visit_joint(V& v, Joint& j) {
   v.q32("reaction_torque", j.reaction_torque);
 }
 
+/// A joint event waiting for the next step (joint destroyed with a body, or
+/// broken): its stale handles, kind, reaction and user data. The handles'
+/// world is not stored (restore sets the target world's).
+template <typename V>
+void visit_joint_event(V& v, JointEvent& e) {
+  v.u32("joint.index1", e.joint.index1);
+  v.u32("joint.generation", e.joint.generation);
+  v.u32("body_a.index1", e.body_a.index1);
+  v.u32("body_a.generation", e.body_a.generation);
+  v.u32("body_b.index1", e.body_b.index1);
+  v.u32("body_b.generation", e.body_b.generation);
+  v.enum8("kind", e.kind, static_cast<int32_t>(JointEventKind::destroyed_with_body));
+  v.vec2("force.x", "force.y", e.force);
+  v.q32("torque", e.torque);
+  v.u64("user_data", e.user_data);
+}
+
 template <typename V>
 void visit_pair(V& v, PairRecord& p) {
   v.i32("shape_a", p.shape_a);
