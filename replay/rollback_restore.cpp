@@ -694,6 +694,18 @@ void Decoder<Apply>::joints() {
                      "), which are not two live bodies");
         return;
       }
+      const JointFieldRange* bad = first_joint_field_out_of_range(j);
+      if (bad != nullptr) {
+        // The field's offset inside the record, found by walking the visitor.
+        Joint copy = j;
+        const size_t field_at = at + field_offset_in(bad->field, [&](OffsetVisitor& ov) { visit_joint(ov, copy); });
+        refuse_range(field_at, bad->field, bad->get(j), bad->lo, bad->hi, bad->unit);
+        return;
+      }
+      if (j.lower > j.upper) {
+        fail(at, "lower " + to_string(j.lower) + " is above upper " + to_string(j.upper));
+        return;
+      }
     } else {
       w_->joints.joints[i] = j;
     }

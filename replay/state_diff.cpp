@@ -168,11 +168,12 @@ namespace {
 /// The position of a record kind's section in canonical order.
 int32_t kind_rank(const std::string& kind) {
   static const char* const kinds[] = {"world",   "body_slot", "body",           "shape_slot", "shape",
-                                      "contact", "touching",  "sensor_overlap", "joint_slot", "joint"};
-  for (int32_t i = 0; i < 10; ++i) {
+                                      "contact", "touching",  "sensor_overlap", "joint_slot", "joint",
+                                      "joint_event"};
+  for (int32_t i = 0; i < 11; ++i) {
     if (kind == kinds[i]) return i;
   }
-  return 10;
+  return 11;
 }
 }  // namespace
 

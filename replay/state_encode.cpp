@@ -59,6 +59,10 @@ const RecordSizes& record_sizes() {
       Joint j{};
       visit_joint(v, j);
     });
+    s.joint_event = measure([](WriteVisitor& v) {
+      JointEvent e{};
+      visit_joint_event(v, e);
+    });
     return s;
   }();
   return sizes;
@@ -90,25 +94,29 @@ size_t encoded_size(const World& w) {
   }
   n += 4 + 4 + w.events.touching.size() * k_pair_bytes;
   n += 4 + 4 + w.events.sensor_overlaps.size() * k_pair_bytes;
-  if (writes_joints(w)) {
+  const uint32_t version = image_version(w);
+  if (version >= k_state_format_version_joint_events) {
+    n += 4 + 4 + w.joints.pending.size() * rs.joint_event;
+  }
+  if (version >= k_state_format_version_joints) {
     n += 4 + 4 + w.joint_pool.generations.size() * k_slot_bytes;
     n += 4 + static_cast<size_t>(w.joint_pool.alive_count) * rs.joint;
   }
   return n;
 }
 
-void write_header(ByteWriter* out, bool with_joints) {
+void write_header(ByteWriter* out, uint32_t version) {
   out->bytes(k_state_magic, 4);
-  out->u32(with_joints ? k_state_format_version_joints : k_state_format_version);
+  out->u32(version);
   out->u32(k_state_kind_full);
 }
 
 size_t encode_into(World* w, uint8_t* buffer, size_t capacity) {
   ByteWriter out(buffer, capacity);
-  const bool with_joints = writes_joints(*w);
-  write_header(&out, with_joints);
+  const uint32_t version = image_version(*w);
+  write_header(&out, version);
   WriteVisitor v{&out};
-  visit_world(v, *w, nullptr, with_joints);
+  visit_world(v, *w, nullptr, version);
   return out.size();
 }
 

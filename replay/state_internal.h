@@ -38,6 +38,7 @@
 #include "physics/events.h"
 #include "physics/id_pool.h"
 #include "physics/island.h"
+#include "physics/joint_state.h"
 #include "physics/limits.h"
 #include "physics/shape.h"
 #include "physics/world.h"
@@ -494,10 +495,12 @@ void visit_pairs(V& v, std::vector<PairRecord>& pairs, const char* kind, ByteRea
 }
 
 /// The whole state after the header. `W` is World or WorldImage; `reader` is
-/// non-null only for the ReadVisitor. with_joints: the version-2 joint
+/// non-null only for the ReadVisitor. version: the image's format version
+/// (2 adds the joint sections, 3 the pending joint events). with_joints:
 /// sections follow the version-1 ones.
 template <typename V, typename W>
-void visit_world(V& v, W& w, ByteReader* reader, bool with_joints) {
+void visit_world(V& v, W& w, ByteReader* reader, uint32_t version) {
+  const bool with_joints = version >= k_state_format_version_joints;
   v.tag("WRLD");
   v.record("world", 0);
   visit_world_def(v, w.def);
@@ -587,11 +590,36 @@ void visit_world(V& v, W& w, ByteReader* reader, bool with_joints) {
     visit_joint(v, joints[i]);
     if (!v.ok()) return;
   }
+  if (version < k_state_format_version_joint_events) return;
+
+  v.tag("JEVP");
+  std::vector<JointEvent>& pending = w.joints.pending;
+  uint32_t pending_count = static_cast<uint32_t>(pending.size());
+  if constexpr (V::k_reading) {
+    reader->set_context("pending joint events");
+    pending_count = reader->read_count("count", 53);
+    if (!reader->ok()) return;
+    pending.assign(pending_count, JointEvent{});
+  } else {
+    v.count("count", pending_count);
+  }
+  for (uint32_t i = 0; i < pending_count; ++i) {
+    v.record("joint_event", i);
+    if constexpr (V::k_reading) reader->set_context("joint_event", i);
+    visit_joint_event(v, pending[i]);
+    if (!v.ok()) return;
+  }
 }
 
-/// Worlds that never had a joint are written as version 1 (the format before
-/// joints, byte for byte); others as version 2 with the joint sections.
-inline bool writes_joints(const World& w) { return !w.joint_pool.generations.empty(); }
+/// The version an image of `w` is written in: 1 for worlds that never had a
+/// joint (the format before joints, byte for byte), 3 while joint events wait
+/// for the next step (joints destroyed with a body since the last step), 2
+/// otherwise (so the images and hashes of every tick after a step are those
+/// of version 2).
+inline uint32_t image_version(const World& w) {
+  if (w.joint_pool.generations.empty() && w.joints.pending.empty()) return k_state_format_version;
+  return w.joints.pending.empty() ? k_state_format_version_joints : k_state_format_version_joint_events;
+}
 
 /// Finds the byte offset of a named field inside one record by walking the
 /// record's visit function in counting mode.
@@ -636,6 +664,83 @@ size_t field_offset_in(const char* field, F&& visit) {
 }
 
 // ---------------------------------------------------------------------------
+// Joint field ranges (restore validation, portable and rollback)
+// ---------------------------------------------------------------------------
+
+/// One Q32 field of a joint record and the range a restored value must lie
+/// in: what the joint API accepts for it (limits.h), over every joint kind.
+struct JointFieldRange {
+  const char* field;
+  Q32 Joint::*member;  ///< the field, or null for a Vec2 component
+  Vec2 Joint::*vector;
+  bool y;              ///< the component of `vector`
+  Q32 lo, hi;
+  const char* unit;
+  Q32 get(const Joint& j) const { return member != nullptr ? j.*member : (y ? (j.*vector).y : (j.*vector).x); }
+};
+
+/// Largest |accumulated joint impulse| restored, N·s (as contact impulses).
+inline constexpr Q32 k_max_restored_joint_impulse = Q32::from_raw(int64_t{400000000} << 32);
+
+/// The range of every bounded Q32 joint field, in canonical order.
+inline const std::vector<JointFieldRange>& joint_field_ranges() {
+  static const std::vector<JointFieldRange> table = [] {
+    const Q32 z = Q32::zero();
+    const Q32 jmax = k_max_restored_joint_impulse;
+    const Q32 speed = max(k_max_linear_speed, k_max_angular_speed);
+    const Q32 motor = max(k_max_joint_force, k_max_joint_torque);
+    const auto q = [](const char* f, Q32 Joint::*m, Q32 lo, Q32 hi, const char* unit) {
+      return JointFieldRange{f, m, nullptr, false, lo, hi, unit};
+    };
+    const auto v = [](const char* f, Vec2 Joint::*m, bool y, Q32 lo, Q32 hi, const char* unit) {
+      return JointFieldRange{f, nullptr, m, y, lo, hi, unit};
+    };
+    return std::vector<JointFieldRange>{
+        v("local_anchor_a.x", &Joint::local_anchor_a, false, -k_max_shape_size, k_max_shape_size, "m"),
+        v("local_anchor_a.y", &Joint::local_anchor_a, true, -k_max_shape_size, k_max_shape_size, "m"),
+        v("local_anchor_b.x", &Joint::local_anchor_b, false, -k_max_shape_size, k_max_shape_size, "m"),
+        v("local_anchor_b.y", &Joint::local_anchor_b, true, -k_max_shape_size, k_max_shape_size, "m"),
+        q("reference_angle", &Joint::reference_angle, -k_pi, k_pi, "rad"),
+        q("break_force", &Joint::break_force, z, k_max_joint_force, "N"),
+        q("break_torque", &Joint::break_torque, z, k_max_joint_torque, "N·m"),
+        q("hertz", &Joint::hertz, z, k_max_joint_hertz, "Hz"),
+        q("damping_ratio", &Joint::damping_ratio, z, k_max_joint_damping_ratio, ""),
+        q("angular_hertz", &Joint::angular_hertz, z, k_max_joint_hertz, "Hz"),
+        q("angular_damping_ratio", &Joint::angular_damping_ratio, z, k_max_joint_damping_ratio, ""),
+        q("length", &Joint::length, z, k_max_joint_length, "m"),
+        q("lower", &Joint::lower, -k_max_joint_length, k_max_joint_length, "rad or m"),
+        q("upper", &Joint::upper, -k_max_joint_length, k_max_joint_length, "rad or m"),
+        q("motor_speed", &Joint::motor_speed, -speed, speed, "rad/s or m/s"),
+        q("max_motor_force", &Joint::max_motor_force, z, motor, "N or N·m"),
+        v("target.x", &Joint::target, false, -k_max_world_coordinate, k_max_world_coordinate, "m"),
+        v("target.y", &Joint::target, true, -k_max_world_coordinate, k_max_world_coordinate, "m"),
+        q("angular_offset", &Joint::angular_offset, -k_pi, k_pi, "rad"),
+        q("max_force", &Joint::max_force, z, k_max_joint_force, "N"),
+        q("max_torque", &Joint::max_torque, z, k_max_joint_torque, "N·m"),
+        q("correction_factor", &Joint::correction_factor, z, Q32::one(), ""),
+        v("linear_impulse.x", &Joint::linear_impulse, false, -jmax, jmax, "N·s"),
+        v("linear_impulse.y", &Joint::linear_impulse, true, -jmax, jmax, "N·s"),
+        q("angular_impulse", &Joint::angular_impulse, -jmax, jmax, "N·m·s"),
+        q("axial_impulse", &Joint::axial_impulse, -jmax, jmax, "N·s"),
+        q("spring_impulse", &Joint::spring_impulse, -jmax, jmax, "N·s"),
+        q("motor_impulse", &Joint::motor_impulse, -jmax, jmax, "N·s"),
+        q("lower_impulse", &Joint::lower_impulse, -jmax, jmax, "N·s"),
+        q("upper_impulse", &Joint::upper_impulse, -jmax, jmax, "N·s"),
+    };
+  }();
+  return table;
+}
+
+/// The first field of `j` outside its range, or null.
+inline const JointFieldRange* first_joint_field_out_of_range(const Joint& j) {
+  for (const JointFieldRange& f : joint_field_ranges()) {
+    const Q32 x = f.get(j);
+    if (x < f.lo || x > f.hi) return &f;
+  }
+  return nullptr;
+}
+
+// ---------------------------------------------------------------------------
 // Shared between the files (defined where noted)
 // ---------------------------------------------------------------------------
 
@@ -649,6 +754,7 @@ struct RecordSizes {
   size_t contact = 0;         // with no points
   size_t contact_point = 0;
   size_t joint = 0;
+  size_t joint_event = 0;
 };
 
 // state_encode.cpp

@@ -19,9 +19,11 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   }
   const uint32_t version = r.u32("format version");
   if (!r.ok()) return bad(r.error());
-  if (version != k_state_format_version && version != k_state_format_version_joints) {
-    return bad("offset 4: expected format version " + std::to_string(k_state_format_version) + " or " +
-               std::to_string(k_state_format_version_joints) + ", got " + std::to_string(version));
+  if (version != k_state_format_version && version != k_state_format_version_joints &&
+      version != k_state_format_version_joint_events) {
+    return bad("offset 4: expected format version " + std::to_string(k_state_format_version) + ", " +
+               std::to_string(k_state_format_version_joints) + " or " +
+               std::to_string(k_state_format_version_joint_events) + ", got " + std::to_string(version));
   }
   if (out_version != nullptr) *out_version = version;
   const uint32_t kind = r.u32("image kind");
@@ -31,13 +33,14 @@ Status decode_image(const uint8_t* data, size_t size, const char* function, Worl
   }
 
   ReadVisitor v{&r};
-  const bool with_joints = version == k_state_format_version_joints;
+  const bool with_joints = version >= k_state_format_version_joints;
+  img->joints.pending.clear();
   if (!with_joints) {
     img->joint_pool = IdPool{};
     img->joints.joints.clear();
     img->joint_offsets.clear();
   }
-  visit_world(v, *img, &r, with_joints);
+  visit_world(v, *img, &r, version);
   if (!r.ok()) return bad(r.error());
   if (!r.at_end()) {
     return bad("offset " + std::to_string(r.offset()) + ": expected the end of the image, " +
@@ -181,7 +184,12 @@ void commit_image(World* w, WorldImage& img) {
   std::swap(w->joint_pool, img.joint_pool);
   std::swap(w->joints.joints, img.joints.joints);
   w->joints.events.clear();
-  w->joints.pending.clear();
+  std::swap(w->joints.pending, img.joints.pending);
+  for (JointEvent& e : w->joints.pending) {  // stale handles of this world
+    e.joint.world = w->id;
+    e.body_a.world = w->id;
+    e.body_b.world = w->id;
+  }
   rebuild_joint_filter(w);
   EventState& e = w->events;
   std::swap(e.touching, img.events.touching);
@@ -240,7 +248,7 @@ Status decode_world_state(const uint8_t* data, size_t size, DecodedState* out) {
   out->version = version;
   out->records.clear();
   DescribeVisitor v{out};
-  visit_world(v, img, nullptr, version == k_state_format_version_joints);
+  visit_world(v, img, nullptr, version);
   return s;
 }
 

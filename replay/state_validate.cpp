@@ -47,7 +47,7 @@ constexpr Q32 k_max_restored_anchor = k_max_shape_size * 4;
 /// only when a check fails (the success path allocates nothing and walks no
 /// visitor, so a warm rollback's restore stays cheap).
 struct RecordRef {
-  enum Kind { world, body, shape, contact } kind;
+  enum Kind { world, body, shape, contact, joint } kind;
   size_t index = 0;
   const WorldImage* img = nullptr;
 
@@ -56,6 +56,7 @@ struct RecordRef {
       case world: return "world";
       case body: return "body " + std::to_string(index);
       case shape: return "shape " + std::to_string(index);
+      case joint: return "joint " + std::to_string(index);
       case contact: {
         const Contact& c = img->contacts[index];
         return "contact " + std::to_string(index) + " (shapes " + std::to_string(c.shape_a) + ", " +
@@ -83,6 +84,10 @@ struct RecordRef {
       case contact: {
         Contact c = img->contacts[index];
         return img->contact_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_contact(v, c); });
+      }
+      case joint: {
+        Joint j = img->joints.joints[index];
+        return img->joint_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_joint(v, j); });
       }
     }
     return 0;
@@ -464,6 +469,35 @@ void check_contacts(ImageChecker& c) {
   }
 }
 
+/// Joint records: every setting against the limits the joint API enforces
+/// (limits.h; the union over the joint kinds of each field's range, as a
+/// field keeps its default 0 in the kinds that do not use it), unit axes for
+/// prismatic and wheel joints, accumulated impulses as contact impulses.
+void check_joints(ImageChecker& c) {
+  WorldImage& img = c.img;
+  const Q32 unit_lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance_raw);
+  for (size_t i = 0; i < img.joints.joints.size() && !c.failed(); ++i) {
+    if (img.joint_pool.alive[i] == 0) continue;
+    const Joint& j = img.joints.joints[i];
+    const RecordRef r{RecordRef::joint, i, &img};
+    const JointFieldRange* bad = first_joint_field_out_of_range(j);
+    if (bad != nullptr) {
+      c.range(r, bad->field, bad->get(j), bad->lo, bad->hi, bad->unit);
+      continue;
+    }
+    if (j.lower > j.upper) {
+      c.refuse(r, "lower", to_string(j.lower) + " is above upper " + to_string(j.upper));
+      continue;
+    }
+    if (j.type == JointType::prismatic || j.type == JointType::wheel) {
+      c.unit(r, "local_axis_a.x", "local_axis_a.y", j.local_axis_a);
+    } else {
+      c.range(r, "local_axis_a.x", j.local_axis_a.x, -unit_lim, unit_lim, "");
+      c.range(r, "local_axis_a.y", j.local_axis_a.y, -unit_lim, unit_lim, "");
+    }
+  }
+}
+
 Status validate_image_values(WorldImage* img, const char* function) {
   ImageChecker c{*img, function, Status{}};
   check_world(c);
@@ -471,6 +505,7 @@ Status validate_image_values(WorldImage* img, const char* function) {
   if (!c.failed()) check_bodies(c);
   if (!c.failed()) check_shape_bounds(c);
   if (!c.failed()) check_contacts(c);
+  if (!c.failed()) check_joints(c);
   return c.status;
 }
 
