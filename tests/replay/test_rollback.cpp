@@ -15,6 +15,7 @@
 #include "replay/rollback.h"
 #include "replay/state.h"
 #include "replay_test_scenes.h"
+#include "tests/readme_quote.h"
 
 namespace {
 
@@ -320,6 +321,59 @@ TEST_CASE("rollback: invalid and locked worlds are refused", "[replay][rollback]
   CHECK_FALSE(rollback_restore(WorldId{}, buffer).ok());
   OwnedWorld w(make_scene_world(Scene::pile));
   CHECK_FALSE(rollback_save(w.id, nullptr).ok());
+}
+
+/// tools/bench/bench_rollback.cpp's pile: 990 boxes of 0.5 m in a pyramid
+/// of base 44 on a static ground box, sleep off, grid broad phase, 60 ticks.
+WorldId make_pyramid_990() {
+  WorldDef def = default_world_def();
+  def.broad_phase = BroadPhaseKind::grid;
+  def.enable_sleep = false;
+  def.gravity = {0_q32, -10_q32};
+  Result<WorldId> created = create_world(def);
+  REQUIRE(created.ok());
+  const WorldId w = created.value;
+  ShapeDef sd = default_shape_def();
+  sd.friction = 0.6_q32;
+  add_box(add_body(w, BodyType::static_body, {0_q32, -1_q32}), 100_q32, 1_q32, sd);
+  const Q32 a = 0.5_q32;
+  for (int32_t i = 0; i < 44; ++i) {
+    for (int32_t j = i; j < 44; ++j) {
+      const Vec2 p{Q32::from_int(i + 1) * a + Q32::from_int(2 * (j - i)) * a - a * Q32::from_int(44),
+                   Q32::from_int(2 * i + 1) * a};
+      add_box(add_body(w, BodyType::dynamic_body, p), a, a, sd);
+    }
+  }
+  for (int32_t t = 0; t < 60; ++t) REQUIRE(world_step(w, k_dt).ok());
+  return w;
+}
+
+TEST_CASE("README figures: compact rollback image of the 990-box pyramid", "[replay][rollback][readme]") {
+  OwnedWorld w(make_pyramid_990());
+  RollbackBuffer buffer;
+  REQUIRE(rollback_save(w.id, &buffer).ok());
+  std::vector<uint8_t> portable;
+  REQUIRE(encode_world_state(w.id, &portable).ok());
+  const long double compact_per_body = static_cast<long double>(buffer.image.size()) / 990;
+  const long double portable_per_body = static_cast<long double>(portable.size()) / 990;
+  WARN("990-box pyramid: compact " << compact_per_body << ", portable " << portable_per_body << " bytes per body");
+  CHECK(compact_per_body <= 256);  // issue 15's goal
+  const auto nearest = [](long double v) { return std::to_string(static_cast<int64_t>(v + 0.5L)); };
+  std::string quote = "the compact image is ";
+  quote += nearest(compact_per_body);
+  quote += " bytes per moving body (the portable image ";
+  quote += nearest(portable_per_body);
+  quote += ")";
+  readme::check_quotes(quote);
+  // A restore and 8 steps give the uninterrupted run's state.
+  OwnedWorld twin(make_pyramid_990());
+  for (int32_t t = 0; t < 3; ++t) REQUIRE(world_step(w.id, k_dt).ok());
+  REQUIRE(rollback_restore(w.id, buffer).ok());
+  for (int32_t t = 0; t < 8; ++t) {
+    REQUIRE(world_step(w.id, k_dt).ok());
+    REQUIRE(world_step(twin.id, k_dt).ok());
+  }
+  CHECK(world_state_hash(w.id) == world_state_hash(twin.id));
 }
 
 }  // namespace
