@@ -97,6 +97,7 @@ inline bool default_filter(const Filter& f) {
 
 /// Copies the active variant only (the others are not state).
 inline void copy_geometry(const ShapeGeometry& from, ShapeGeometry* to) {
+  if (to->type != from.type) *to = ShapeGeometry{};  // stale variants as a fresh record has them
   to->type = from.type;
   switch (from.type) {
     case ShapeType::circle: to->circle = from.circle; break;
