@@ -274,8 +274,19 @@ class ByteReader {
 
  private:
   const uint8_t* take(size_t n, const char* what) {
-    if (failed_) return nullptr;
-    if (n > size_ - offset_) {
+    if (failed_ || n > size_ - offset_) [[unlikely]] {
+      fail_take(n, what);
+      return nullptr;
+    }
+    const uint8_t* p = data_ + offset_;
+    offset_ += n;
+    return p;
+  }
+  /// take()'s failure path, out of line so that take() inlines into every
+  /// read (the message is built only here).
+  [[gnu::cold, gnu::noinline]] void fail_take(size_t n, const char* what) {
+    if (failed_) return;
+    {
       std::string m("expected ");
       m.append(std::to_string(n));
       m.append(n == 1 ? " byte of " : " bytes of ");
@@ -284,11 +295,7 @@ class ByteReader {
       m.append(std::to_string(size_ - offset_));
       m.append(" left");
       fail_at(offset_, m);
-      return nullptr;
     }
-    const uint8_t* p = data_ + offset_;
-    offset_ += n;
-    return p;
   }
 
   const uint8_t* data_ = nullptr;

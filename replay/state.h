@@ -24,8 +24,9 @@
 //             decide the next step's begin/end events)
 //   joints    (version 2 only, see k_state_format_version_joints) joint pool
 //             slots, then per live joint its settings, warm-start impulses
-//             and last reaction. Joint events waiting for the next step
-//             (destroyed with a body) are not state: a restore clears them
+//             and last reaction
+//   events    (version 3 only) joint events waiting for the next step
+//             (joints destroyed with a body since the last step)
 // NOT encoded: scratch (arena, step context, contact scratch, the last step's
 // event lists — empty after a restore until the next step), dead slots' stale
 // records (reset to defaults on restore, as destroy does), polygon entries
@@ -40,7 +41,7 @@
 // section starts with a 4-byte ASCII tag ("WRLD", "BPOL", "BODY", "SPOL",
 // "SHAP", "CONT", "TUCH", "SENS") so a corrupt image fails near the damage.
 // Nothing depends on struct layout, padding, host endianness or addresses.
-// Field order is defined once (state.cpp: one visitor per record drives
+// Field order is defined once (state_internal.h: one visitor per record drives
 // encoding, size, decoding and the named-field decoding used by diffs), so
 // the four can never disagree.
 //
@@ -98,6 +99,13 @@ inline constexpr uint32_t k_state_format_version = 1;
 /// ascending index: kind, bodies, anchors, axis, settings, accumulated
 /// impulses, last reaction). Both versions are read.
 inline constexpr uint32_t k_state_format_version_joints = 2;
+/// The version of images taken while joint events wait for the next step
+/// (joints destroyed with a body since the last step; that step reports
+/// them): version 2 followed by "JEVP" (u32 count, then per event the joint's
+/// and both bodies' index1 and generation, kind, force, torque, user data).
+/// Images taken right after a step never have pending events, so their
+/// bytes and hashes stay those of version 2. Versions 1, 2 and 3 are read.
+inline constexpr uint32_t k_state_format_version_joint_events = 3;
 
 /// The 4 magic bytes at the start of every state image.
 inline constexpr uint8_t k_state_magic[4] = {'T', 'N', 'D', 'S'};
@@ -189,7 +197,8 @@ struct DecodedField {
 /// One record of a decoded state, in canonical order.
 struct DecodedRecord {
   std::string kind;        ///< "header", "world", "body_slot", "body", "shape_slot", "shape",
-                           ///< "contact", "touching", "sensor_overlap", "joint_slot", "joint"
+                           ///< "contact", "touching", "sensor_overlap", "joint_slot", "joint",
+                           ///< "joint_event" (index: position in the pending list)
   int64_t index = 0;       ///< slot / body / shape index; contacts and pairs: lower shape index
   int64_t index2 = -1;     ///< contacts and pairs: the higher shape index; −1 otherwise
   uint32_t generation = 0; ///< bodies and shapes: the slot's generation; 0 otherwise

@@ -13,6 +13,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "replay/rollback.h"
 #include "replay/state.h"
 
 namespace tandem::golden {
@@ -32,7 +33,7 @@ namespace {
 
 /// The byte of a state image that holds WorldDef::broad_phase, found by
 /// encoding two empty worlds that differ only in it (so nothing here depends
-/// on the layout of replay/state.cpp); npos when they differ elsewhere too.
+/// on the layout of replay/state_internal.h); npos when they differ elsewhere too.
 size_t broad_phase_byte() {
   static const size_t offset = [] {
     std::vector<uint8_t> images[2];
@@ -171,7 +172,9 @@ Chain run_chain(const Scene& scene, const ChainOptions& options) {
       ++next_restore;
       const std::string where = std::string(scene.name) + ": restore at tick " + std::to_string(tick) + ": ";
       std::vector<uint8_t> image;
-      const Status saved = encode_world_state(ctx.world, &image);
+      RollbackBuffer compact;
+      const Status saved =
+          options.compact ? rollback_save(ctx.world, &compact) : encode_world_state(ctx.world, &image);
       if (!saved.ok()) {
         out.error = where + "encode_world_state: " + saved.message;
         break;
@@ -188,6 +191,34 @@ Chain run_chain(const Scene& scene, const ChainOptions& options) {
       if (!out.error.empty()) break;
       const WorldId old_world = ctx.world;
       ctx = kept;
+      if (options.compact) {  // the same world, or every other time a new one
+        WorldId target = old_world;
+        if (out.restores % 2 == 1) {
+          const Result<WorldId> nw = create_world(default_world_def());
+          if (!nw.ok()) {
+            out.error = where + "create_world: " + nw.status.message;
+            break;
+          }
+          target = nw.value;
+        }
+        const Status r = rollback_restore(target, compact);
+        if (!r.ok()) {
+          out.error = where + "rollback_restore: " + r.message;
+          break;
+        }
+        if (target != old_world) {
+          (void)destroy_world(old_world);
+          rebind(ctx, target);
+        }
+        RollbackBuffer again;
+        (void)rollback_save(ctx.world, &again);
+        if (again.image != compact.image) {
+          out.error = where + "a save of the restored world differs from the restored image";
+          break;
+        }
+        ++out.restores;
+        continue;
+      }
       if (out.restores % 2 == 0) {  // back into the same world
         const Status r = world_restore(old_world, image.data(), image.size());
         if (!r.ok()) {

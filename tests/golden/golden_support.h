@@ -92,6 +92,10 @@ struct ChainOptions {
   /// same world, or every other time into a new world) and go on. 0: none.
   int32_t restore_count = 0;
   uint64_t restore_seed = 0;
+  /// Round trips through the compact rollback snapshot (replay/rollback.h:
+  /// rollback_save / rollback_restore) instead of the portable image; the
+  /// restored world is then checked by the rollback hash of a new save.
+  bool compact = false;
   /// Called after every tick's step (tests that check what a scene does).
   std::function<void(SceneContext&, int32_t tick)> observe;
 };

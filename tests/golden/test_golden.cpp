@@ -96,7 +96,7 @@ void check_broad_phases(const std::string& name) {
 /// The chain again with snapshot/restore round trips at seeded random ticks
 /// (a detour of 1..40 ticks rolled back each time, into the same world or a
 /// new one): the restored worlds must go on exactly as the golden run.
-void check_restores(const std::string& name) {
+void check_restores(const std::string& name, bool compact = false) {
   if (regenerate_mode()) return;
   const Scene* scene = find_scene(name);
   REQUIRE(scene != nullptr);
@@ -105,12 +105,14 @@ void check_restores(const std::string& name) {
   REQUIRE(golden.error.empty());
   ChainOptions options;
   options.ticks = tick_cap();
-  options.restore_count = 6;
-  uint64_t seed = 0x5EED;
+  options.restore_count = compact ? 12 : 6;
+  options.compact = compact;
+  uint64_t seed = compact ? 0xC0DE : 0x5EED;
   for (const char ch : name) seed = seed * 131 + static_cast<uint8_t>(ch);
   options.restore_seed = seed;
   const Chain run = run_chain(*scene, options);
   INFO("scene " << name << ", " << run.restores << " restores (seed " << seed << ")");
+  INFO(run.error);
   REQUIRE(run.error.empty());
   CHECK(run.restores >= 1);
   const std::string diff = compare(golden, run);
@@ -162,7 +164,8 @@ TEST_CASE("golden: the comparison names the first differing recorded tick", "[go
   TEST_CASE("golden chain: " name ", every broad phase", "[golden][broad_phase]") {        \
     check_broad_phases(name);                                                              \
   }                                                                                        \
-  TEST_CASE("golden chain: " name ", snapshot/restore", "[golden][restore]") { check_restores(name); }
+  TEST_CASE("golden chain: " name ", snapshot/restore", "[golden][restore]") { check_restores(name); }     \
+  TEST_CASE("golden chain: " name ", compact rollback", "[golden][rollback]") { check_restores(name, true); }
 
 GOLDEN_SCENE("circles")
 GOLDEN_SCENE("capsules")

@@ -11,6 +11,7 @@
 
 #include "physics/tandem.h"
 #include "replay/replay_file.h"
+#include "replay/rollback.h"
 #include "replay/state.h"
 #include "replay/synctest.h"
 #include "replay/verify.h"
@@ -45,6 +46,16 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
   check(world_restore(world, snapshot.data(), written));  // same handles, same free lists, same bits
   const bool restored = world_state_hash(world) == before;
 
+  // Rollback every tick: the compact snapshot (replay/rollback.h), a fifth of
+  // the portable image, for the same build only.
+  RollbackBuffer saved;                                // reused: saves after the first do not allocate
+  rollback_save(world, &saved);
+  const uint64_t tick_hash = rollback_hash(saved);     // what peers compare per tick
+  for (int i = 0; i < 8; ++i) world_step(world, dt);
+  rollback_restore(world, saved);                      // every later step bit-identical
+  rollback_save(world, &saved);
+  const bool same_tick = rollback_hash(saved) == tick_hash;
+
   // Record a replay (commands + a hash per tick + keyframes), then verify it.
   ReplayRecorder recorder;
   recorder.open_memory();                              // or open_file("run.tandem-replay")
@@ -67,6 +78,7 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
 
   CHECK(written == snapshot.size());
   CHECK(restored);
+  CHECK(same_tick);
   CHECK(recorder.tick_count() == 120);
   CHECK(replay.tick_count() == 120);
   INFO(format_verify_report(report));

@@ -1,5 +1,6 @@
 // test_readme_figures.cpp — the snapshot sizes README.md quotes ("Replay"),
-// computed on the scene tools/bench/bench_rollback.cpp measures (1000
+// computed on the scene tools/bench/bench_rollback.cpp measured before the
+// compact rollback snapshot (it now measures a 990-box pyramid; 1000
 // dynamic bodies, alternating 0.4 m boxes and 0.35 m circles, dropped in a
 // 40 m walled pit, 90 ticks at 1/60 s) and checked against the README text
 // at the precision quoted (tests/readme_quote.h). Sizes are deterministic,
@@ -41,7 +42,7 @@ void pile_box(BodyId b, Q32 hw, Q32 hh) {
   REQUIRE(create_polygon_shape(b, default_shape_def(), poly).ok());
 }
 
-/// bench_rollback.cpp's make_pile(), stepped 90 ticks.
+/// The pile bench_rollback.cpp's make_pile() built before issue 15, stepped 90 ticks.
 void build_pile(WorldId w) {
   pile_box(pile_body(w, BodyType::static_body, {0_q32, -1_q32}), 21_q32, 1_q32);
   pile_box(pile_body(w, BodyType::static_body, {-20.5_q32, 20_q32}), 0.5_q32, 21_q32);
@@ -82,7 +83,7 @@ TEST_CASE("README figures: snapshot and delta sizes of the 1000-body pile", "[re
   const long double per_body = static_cast<long double>(base.size()) / k_pile_bodies;
   const long double contact_share =
       static_cast<long double>(tag_offset(base, "TUCH") - tag_offset(base, "CONT")) / static_cast<long double>(base.size());
-  // Deltas 1 and 8 ticks after the base (bench_rollback's BM_DeltaSnapshot).
+  // Deltas 1 and 8 ticks after the base (what bench_rollback's BM_DeltaSnapshot measured).
   long double delta_per_body[2] = {};
   int32_t index = 0;
   std::vector<uint8_t> image, delta;

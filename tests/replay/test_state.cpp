@@ -251,7 +251,7 @@ TEST_CASE("state: corrupt, truncated and foreign images are refused and the worl
   bad[0] = 'X';
   (void)refused(bad, "magic");
   bad = good;
-  bad[4] = 3;  // 1 and 2 (with joints) are both valid
+  bad[4] = 4;  // 1, 2 (with joints) and 3 (with pending joint events) are valid
   (void)refused(bad, "version");
   // Truncated at every length in the first 200 bytes and a spread of others.
   for (size_t n = 0; n < good.size(); n += (n < 200 ? 1 : 97)) {

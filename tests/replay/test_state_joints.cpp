@@ -1,15 +1,18 @@
-// Joints in the canonical state (replay/state.h, version 2): a world with
+// Joints in the canonical state (replay/state.h, versions 2 and 3): a world with
 // joints snapshots and restores mid-run (into itself and into a fresh world)
 // and then steps bit-identically to the original; the hash covers joint
 // settings and impulses; a world that never had a joint still writes
 // version 1; a corrupt joint record is refused with its byte offset and the
-// world is left untouched; the diff names the joint field.
+// world is left untouched; the diff names the joint field; joint events
+// pending at snapshot time survive a restore (portable and compact); joint
+// settings outside the joint limits are refused with offset and field.
 #include <catch2/catch.hpp>
 
 #include <cstring>
 #include <vector>
 
 #include "replay/bytes.h"
+#include "replay/rollback.h"
 #include "replay/state.h"
 
 namespace tandem {
@@ -186,6 +189,143 @@ TEST_CASE("state: a corrupt joint record is refused and the diff names the joint
   CHECK(diff.index == 0);
   CHECK(diff.field == "motor_speed");
   CHECK(diff.describe().find("joint 0 (generation 1) motor_speed: a = 1") == 0);
+}
+
+namespace {
+
+/// Offset of the first occurrence of an 8-byte little-endian value.
+size_t find_raw(const std::vector<uint8_t>& bytes, int64_t value) {
+  uint8_t le[8];
+  for (int i = 0; i < 8; ++i) le[i] = static_cast<uint8_t>(static_cast<uint64_t>(value) >> (8 * i));
+  for (size_t i = 0; i + 8 <= bytes.size(); ++i) {
+    if (std::memcmp(bytes.data() + i, le, 8) == 0) return i;
+  }
+  return SIZE_MAX;
+}
+
+void put_raw(std::vector<uint8_t>* bytes, size_t at, int64_t value) {
+  for (int i = 0; i < 8; ++i) {
+    (*bytes)[at + static_cast<size_t>(i)] = static_cast<uint8_t>(static_cast<uint64_t>(value) >> (8 * i));
+  }
+}
+
+/// The joint events of the world's last step.
+std::vector<JointEvent> last_joint_events(WorldId w) {
+  Result<std::span<const JointEvent>> r = world_joint_events(w);
+  REQUIRE(r.ok());
+  return std::vector<JointEvent>(r.value.begin(), r.value.end());
+}
+
+}  // namespace
+
+TEST_CASE("state: joint events pending at snapshot time are saved (version 3) and reported after a restore",
+          "[replay][state][joint]") {
+  std::vector<JointId> joints;
+  Owned w(make_joint_world(&joints));
+  for (int t = 0; t < 20; ++t) REQUIRE(world_step(w.id, k_tick).ok());
+  // Destroying the third chain box destroys its two joints: both wait for
+  // the next step's events.
+  const BodyId box = joint_body_b(joints[2]);
+  REQUIRE(destroy_body(box).ok());
+  std::vector<uint8_t> image;
+  REQUIRE(encode_world_state(w.id, &image).ok());
+  CHECK(image[4] == k_state_format_version_joint_events);
+  RollbackBuffer compact;
+  REQUIRE(rollback_save(w.id, &compact).ok());
+  DecodedState decoded;
+  REQUIRE(decode_world_state(image.data(), image.size(), &decoded).ok());
+  CHECK(decoded.version == k_state_format_version_joint_events);
+  int32_t event_records = 0;
+  for (const DecodedRecord& r : decoded.records) event_records += r.kind == "joint_event" ? 1 : 0;
+  CHECK(event_records == 2);
+
+  Result<WorldId> a = create_world_from_snapshot(image.data(), image.size());
+  REQUIRE(a.ok());
+  Owned portable(a.value);
+  Result<WorldId> b = create_world(default_world_def());
+  REQUIRE(b.ok());
+  Owned restored(b.value);
+  REQUIRE(rollback_restore(restored.id, compact).ok());
+  REQUIRE(world_step(w.id, k_tick).ok());
+  REQUIRE(world_step(portable.id, k_tick).ok());
+  REQUIRE(world_step(restored.id, k_tick).ok());
+  const std::vector<JointEvent> expected = last_joint_events(w.id);
+  REQUIRE(expected.size() == 2);
+  for (const WorldId other : {portable.id, restored.id}) {
+    const std::vector<JointEvent> got = last_joint_events(other);
+    REQUIRE(got.size() == expected.size());
+    for (size_t i = 0; i < got.size(); ++i) {
+      CHECK(got[i].kind == JointEventKind::destroyed_with_body);
+      CHECK(got[i].kind == expected[i].kind);
+      CHECK(got[i].joint.index1 == expected[i].joint.index1);
+      CHECK(got[i].joint.generation == expected[i].joint.generation);
+      CHECK(got[i].body_a.index1 == expected[i].body_a.index1);
+      CHECK(got[i].body_b.generation == expected[i].body_b.generation);
+      CHECK(got[i].user_data == expected[i].user_data);
+      CHECK(got[i].joint.world == other);
+    }
+    CHECK(world_state_hash(other) == world_state_hash(w.id));
+  }
+  // After the step nothing is pending: version 2 again.
+  REQUIRE(encode_world_state(w.id, &image).ok());
+  CHECK(image[4] == k_state_format_version_joints);
+}
+
+TEST_CASE("state: joint records outside the joint limits are refused with offset, joint and field",
+          "[replay][state][joint]") {
+  std::vector<JointId> joints;
+  Owned w(make_joint_world(&joints));
+  REQUIRE(joint_set_motor_speed(joints[0], 3.25_q32).ok());
+  for (int t = 0; t < 10; ++t) REQUIRE(world_step(w.id, k_tick).ok());
+  const uint64_t hash = world_state_hash(w.id);
+  std::vector<uint8_t> image;
+  REQUIRE(encode_world_state(w.id, &image).ok());
+  const size_t at = find_raw(image, (3.25_q32).raw);
+  REQUIRE(at != SIZE_MAX);
+  std::vector<uint8_t> bad = image;
+  put_raw(&bad, at, (5000_q32).raw);
+  Status s = world_restore(w.id, bad.data(), bad.size());
+  INFO(s.message);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message ==
+        "world_restore: offset " + std::to_string(at) +
+            ": joint 0 motor_speed 5000 rad/s or m/s is outside [-1000, 1000] rad/s or m/s");
+  CHECK(world_state_hash(w.id) == hash);
+
+  // A negative break force and a lower limit above the upper one.
+  const size_t join = [&] {
+    size_t j = 0;
+    for (size_t i = 0; i + 4 <= image.size(); ++i) {
+      if (std::memcmp(image.data() + i, "JOIN", 4) == 0) j = i;
+    }
+    return j;
+  }();
+  REQUIRE(join > 0);
+  const size_t break_force = join + 4 + 69;  // type, bodies, anchors, axis, reference angle, four flags
+  bad = image;
+  put_raw(&bad, break_force, (-1_q32).raw);
+  s = world_restore(w.id, bad.data(), bad.size());
+  CHECK(s.message == "world_restore: offset " + std::to_string(break_force) +
+                         ": joint 0 break_force -1 N is outside [0, 100000000] N");
+  const size_t lower = join + 4 + 133;
+  bad = image;
+  put_raw(&bad, lower, (2_q32).raw);  // upper is 1 rad
+  s = world_restore(w.id, bad.data(), bad.size());
+  CHECK(s.message == "world_restore: offset " + std::to_string(lower) + ": joint 0 lower 2 is above upper 1");
+  CHECK(world_state_hash(w.id) == hash);
+
+  // The compact snapshot refuses the same way.
+  RollbackBuffer compact;
+  REQUIRE(rollback_save(w.id, &compact).ok());
+  const size_t cat = find_raw(compact.image, (3.25_q32).raw);
+  REQUIRE(cat != SIZE_MAX);
+  RollbackBuffer cbad = compact;
+  put_raw(&cbad.image, cat, (5000_q32).raw);
+  s = rollback_restore(w.id, cbad);
+  CHECK(s.message == "rollback_restore: offset " + std::to_string(cat) +
+                         ": joint 0 motor_speed 5000 rad/s or m/s is outside [-1000, 1000] rad/s or m/s");
+  CHECK(world_state_hash(w.id) == hash);
+  REQUIRE(world_step(w.id, k_tick).ok());
 }
 
 }  // namespace tandem

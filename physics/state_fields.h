@@ -1,0 +1,282 @@
+// state_fields.h — the canonical field list of every persistent physics
+// record (internal, not installed): one visit function per record lists its
+// fields in canonical order with their names, and every consumer of the
+// canonical state walks them — replay/'s encoder, decoder, size, hash, field
+// diff and restore validation (replay/state_internal.h) — so adding a field
+// to a record is one line here (plus a format version bump when the bytes
+// change; tests/replay/test_state_fields.cpp fails when a record's size
+// changes without this list being revisited).
+//
+// A visitor V provides: k_reading (true when fields are being filled from
+// bytes), record(kind, index, index2, generation), tag(4 chars),
+// q32(name, Q32&), vec2(name_x, name_y, Vec2&), i32, u32, count, u16, u64,
+// boolean (name, T&), enum8(name, E&, max), ranged_i32(name, int32_t&, lo,
+// hi) and ok() (false after a failed read: stop).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "physics/body.h"
+#include "physics/contact.h"
+#include "physics/event_state.h"
+#include "physics/joint.h"
+#include "physics/joint_state.h"
+#include "physics/limits.h"
+#include "physics/shape.h"
+
+namespace tandem::state_fields {
+
+// ---------------------------------------------------------------------------
+// Field names that carry an index (built once)
+// ---------------------------------------------------------------------------
+
+inline const char* polygon_name(int32_t i, int32_t which) {
+  // which: 0 vertices.x, 1 vertices.y, 2 normals.x, 3 normals.y
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (int32_t k = 0; k < k_max_polygon_vertices; ++k) {
+      const std::string s = std::to_string(k);
+      n.push_back("vertices[" + s + "].x");
+      n.push_back("vertices[" + s + "].y");
+      n.push_back("normals[" + s + "].x");
+      n.push_back("normals[" + s + "].y");
+    }
+    return n;
+  }();
+  return names[static_cast<size_t>(i * 4 + which)].c_str();
+}
+
+inline constexpr int32_t k_point_field_count = 10;
+
+inline const char* point_name(int32_t i, int32_t which) {
+  static const std::vector<std::string> names = [] {
+    static const char* const fields[k_point_field_count] = {
+        "point.x",    "point.y",    "anchor_a.x", "anchor_a.y",     "anchor_b.x",
+        "anchor_b.y", "separation", "id",         "normal_impulse", "tangent_impulse"};
+    std::vector<std::string> n;
+    for (int32_t k = 0; k < 2; ++k) {
+      for (const char* f : fields) n.push_back("points[" + std::to_string(k) + "]." + f);
+    }
+    return n;
+  }();
+  return names[static_cast<size_t>(i * k_point_field_count + which)].c_str();
+}
+
+
+// ---------------------------------------------------------------------------
+// Records, in canonical field order
+// ---------------------------------------------------------------------------
+
+template <typename V>
+void visit_world_def(V& v, WorldDef& d) {
+  v.vec2("gravity.x", "gravity.y", d.gravity);
+  v.ranged_i32("sub_step_count", d.sub_step_count, 1, k_max_sub_steps);
+  v.q32("contact_hertz", d.contact_hertz);
+  v.q32("contact_damping_ratio", d.contact_damping_ratio);
+  v.q32("max_contact_push_speed", d.max_contact_push_speed);
+  v.q32("joint_hertz", d.joint_hertz);
+  v.q32("joint_damping_ratio", d.joint_damping_ratio);
+  v.q32("restitution_threshold", d.restitution_threshold);
+  v.q32("hit_event_threshold", d.hit_event_threshold);
+  v.q32("max_linear_speed", d.max_linear_speed);
+  v.vec2("bounds.lower.x", "bounds.lower.y", d.bounds.lower);
+  v.vec2("bounds.upper.x", "bounds.upper.y", d.bounds.upper);
+  v.boolean("enable_sleep", d.enable_sleep);
+  v.boolean("enable_continuous", d.enable_continuous);
+  v.enum8("broad_phase", d.broad_phase, static_cast<int32_t>(BroadPhaseKind::tree));
+  v.u64("user_data", d.user_data);
+}
+
+template <typename V>
+void visit_body(V& v, Body& b, BodySim& s) {
+  v.enum8("type", b.type, static_cast<int32_t>(BodyType::dynamic_body));
+  v.i32("head_shape", b.head_shape);
+  v.i32("shape_count", b.shape_count);
+  v.q32("mass", b.mass);
+  v.q32("rotational_inertia", b.rotational_inertia);
+  v.q32("sleep_time", b.sleep_time);
+  v.i32("sleep_island", b.sleep_island);
+  v.u64("user_data", b.user_data);
+  v.boolean("enable_sleep", b.enable_sleep);
+  v.boolean("awake", b.awake);
+  v.boolean("enabled", b.enabled);
+  v.boolean("fixed_rotation", b.fixed_rotation);
+  v.boolean("bullet", b.bullet);
+  v.q32("min_extent", b.min_extent);
+  v.q32("max_extent", b.max_extent);
+  v.vec2("position.x", "position.y", s.transform.p);
+  v.q32("rotation.c", s.transform.q.c);
+  v.q32("rotation.s", s.transform.q.s);
+  v.vec2("center.x", "center.y", s.center);
+  v.vec2("local_center.x", "local_center.y", s.local_center);
+  v.vec2("linear_velocity.x", "linear_velocity.y", s.linear_velocity);
+  v.q32("angular_velocity", s.angular_velocity);
+  v.vec2("force.x", "force.y", s.force);
+  v.q32("torque", s.torque);
+  v.q32("inv_mass", s.inv_mass);
+  v.q32("inv_inertia", s.inv_inertia);
+  v.q32("linear_damping", s.linear_damping);
+  v.q32("angular_damping", s.angular_damping);
+  v.q32("gravity_scale", s.gravity_scale);
+}
+
+template <typename V>
+void visit_shape(V& v, Shape& s, ShapeGeometry& g) {
+  v.i32("body", s.body_index);
+  v.i32("prev_shape", s.prev_shape);
+  v.i32("next_shape", s.next_shape);
+  v.enum8("type", s.type, static_cast<int32_t>(ShapeType::chain_segment));
+  v.q32("friction", s.friction);
+  v.q32("restitution", s.restitution);
+  v.q32("density", s.density);
+  v.u64("filter.category_bits", s.filter.category_bits);
+  v.u64("filter.mask_bits", s.filter.mask_bits);
+  v.i32("filter.group_index", s.filter.group_index);
+  v.u64("user_data", s.user_data);
+  v.vec2("aabb.lower.x", "aabb.lower.y", s.aabb.lower);
+  v.vec2("aabb.upper.x", "aabb.upper.y", s.aabb.upper);
+  v.boolean("is_sensor", s.is_sensor);
+  v.boolean("enable_hit_events", s.enable_hit_events);
+  if (!v.ok()) return;
+  if constexpr (V::k_reading) g.type = s.type;
+  switch (s.type) {
+    case ShapeType::circle:
+      v.vec2("circle.center.x", "circle.center.y", g.circle.center);
+      v.q32("circle.radius", g.circle.radius);
+      break;
+    case ShapeType::capsule:
+      v.vec2("capsule.center1.x", "capsule.center1.y", g.capsule.center1);
+      v.vec2("capsule.center2.x", "capsule.center2.y", g.capsule.center2);
+      v.q32("capsule.radius", g.capsule.radius);
+      break;
+    case ShapeType::segment:
+      v.vec2("segment.point1.x", "segment.point1.y", g.segment.point1);
+      v.vec2("segment.point2.x", "segment.point2.y", g.segment.point2);
+      break;
+    case ShapeType::polygon: {
+      Polygon& p = g.polygon;
+      v.ranged_i32("polygon.count", p.count, 3, k_max_polygon_vertices);
+      if (!v.ok()) return;
+      const int32_t n = std::clamp(p.count, int32_t{0}, k_max_polygon_vertices);
+      for (int32_t i = 0; i < n; ++i) {
+        v.vec2(polygon_name(i, 0), polygon_name(i, 1), p.vertices[static_cast<size_t>(i)]);
+      }
+      for (int32_t i = 0; i < n; ++i) {
+        v.vec2(polygon_name(i, 2), polygon_name(i, 3), p.normals[static_cast<size_t>(i)]);
+      }
+      v.vec2("polygon.centroid.x", "polygon.centroid.y", p.centroid);
+      v.q32("polygon.radius", p.radius);
+      break;
+    }
+    case ShapeType::chain_segment:
+      v.vec2("chain.ghost1.x", "chain.ghost1.y", g.chain_segment.ghost1);
+      v.vec2("chain.point1.x", "chain.point1.y", g.chain_segment.segment.point1);
+      v.vec2("chain.point2.x", "chain.point2.y", g.chain_segment.segment.point2);
+      v.vec2("chain.ghost2.x", "chain.ghost2.y", g.chain_segment.ghost2);
+      v.i32("chain.chain_id", g.chain_segment.chain_id);
+      break;
+    case ShapeType::count:
+      break;
+  }
+}
+
+template <typename V>
+void visit_contact(V& v, Contact& c) {
+  v.i32("shape_a", c.shape_a);
+  v.i32("shape_b", c.shape_b);
+  v.u32("generation_a", c.generation_a);
+  v.u32("generation_b", c.generation_b);
+  v.i32("body_a", c.body_a);
+  v.i32("body_b", c.body_b);
+  v.u32("flags", c.flags);
+  v.q32("friction", c.friction);
+  v.q32("restitution", c.restitution);
+  v.vec2("normal.x", "normal.y", c.manifold.normal);
+  v.ranged_i32("point_count", c.manifold.point_count, 0, 2);
+  if (!v.ok()) return;
+  const int32_t n = std::clamp(c.manifold.point_count, int32_t{0}, int32_t{2});
+  for (int32_t i = 0; i < n; ++i) {
+    ManifoldPoint& p = c.manifold.points[static_cast<size_t>(i)];
+    v.vec2(point_name(i, 0), point_name(i, 1), p.point);
+    v.vec2(point_name(i, 2), point_name(i, 3), p.anchor_a);
+    v.vec2(point_name(i, 4), point_name(i, 5), p.anchor_b);
+    v.q32(point_name(i, 6), p.separation);
+    v.u16(point_name(i, 7), p.id);
+    v.q32(point_name(i, 8), c.normal_impulse[static_cast<size_t>(i)]);
+    v.q32(point_name(i, 9), c.tangent_impulse[static_cast<size_t>(i)]);
+  }
+}
+
+/// A joint record (version 2): settings, accumulated impulses and the last
+/// reaction; the per-step scratch is not state.
+template <typename V>
+void visit_joint(V& v, Joint& j) {
+  v.enum8("type", j.type, static_cast<int32_t>(JointType::motor));
+  v.i32("body_a", j.body_a);
+  v.i32("body_b", j.body_b);
+  v.vec2("local_anchor_a.x", "local_anchor_a.y", j.local_anchor_a);
+  v.vec2("local_anchor_b.x", "local_anchor_b.y", j.local_anchor_b);
+  v.vec2("local_axis_a.x", "local_axis_a.y", j.local_axis_a);
+  v.q32("reference_angle", j.reference_angle);
+  v.boolean("collide_connected", j.collide_connected);
+  v.boolean("enable_spring", j.enable_spring);
+  v.boolean("enable_limit", j.enable_limit);
+  v.boolean("enable_motor", j.enable_motor);
+  v.q32("break_force", j.break_force);
+  v.q32("break_torque", j.break_torque);
+  v.u64("user_data", j.user_data);
+  v.q32("hertz", j.hertz);
+  v.q32("damping_ratio", j.damping_ratio);
+  v.q32("angular_hertz", j.angular_hertz);
+  v.q32("angular_damping_ratio", j.angular_damping_ratio);
+  v.q32("length", j.length);
+  v.q32("lower", j.lower);
+  v.q32("upper", j.upper);
+  v.q32("motor_speed", j.motor_speed);
+  v.q32("max_motor_force", j.max_motor_force);
+  v.vec2("target.x", "target.y", j.target);
+  v.q32("angular_offset", j.angular_offset);
+  v.q32("max_force", j.max_force);
+  v.q32("max_torque", j.max_torque);
+  v.q32("correction_factor", j.correction_factor);
+  v.vec2("linear_impulse.x", "linear_impulse.y", j.linear_impulse);
+  v.q32("angular_impulse", j.angular_impulse);
+  v.q32("axial_impulse", j.axial_impulse);
+  v.q32("spring_impulse", j.spring_impulse);
+  v.q32("motor_impulse", j.motor_impulse);
+  v.q32("lower_impulse", j.lower_impulse);
+  v.q32("upper_impulse", j.upper_impulse);
+  v.vec2("reaction_force.x", "reaction_force.y", j.reaction_force);
+  v.q32("reaction_torque", j.reaction_torque);
+}
+
+/// A joint event waiting for the next step (joint destroyed with a body, or
+/// broken): its stale handles, kind, reaction and user data. The handles'
+/// world is not stored (restore sets the target world's).
+template <typename V>
+void visit_joint_event(V& v, JointEvent& e) {
+  v.u32("joint.index1", e.joint.index1);
+  v.u32("joint.generation", e.joint.generation);
+  v.u32("body_a.index1", e.body_a.index1);
+  v.u32("body_a.generation", e.body_a.generation);
+  v.u32("body_b.index1", e.body_b.index1);
+  v.u32("body_b.generation", e.body_b.generation);
+  v.enum8("kind", e.kind, static_cast<int32_t>(JointEventKind::destroyed_with_body));
+  v.vec2("force.x", "force.y", e.force);
+  v.q32("torque", e.torque);
+  v.u64("user_data", e.user_data);
+}
+
+template <typename V>
+void visit_pair(V& v, PairRecord& p) {
+  v.i32("shape_a", p.shape_a);
+  v.i32("shape_b", p.shape_b);
+  v.u32("generation_a", p.generation_a);
+  v.u32("generation_b", p.generation_b);
+}
+
+
+}  // namespace tandem::state_fields

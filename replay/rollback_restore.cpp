@@ -1,0 +1,765 @@
+// rollback_restore.cpp — checking and restoring a compact rollback image
+// (rollback.h; the layout is in rollback.cpp).
+//
+// DESIGN. One decoder runs twice over the image. The first pass (Apply =
+// false) checks everything — bytes left, enums, indices, cross references,
+// value ranges — and touches no world; the second (Apply = true) writes the
+// world and cannot fail, so a refused image changes nothing and an accepted
+// one needs no scratch copy of the world. Bounds are checked once per record
+// (its length follows from its flag bytes), then its fields are read with
+// plain little-endian loads; the rare sections with many fields (world
+// settings, full contacts, joints, joint events) go through the portable
+// format's ReadVisitor, so their checks and messages are the same.
+// Messages: "rollback_restore: offset N: body 12 position.x 3e6 m is outside
+// [-2000000, 2000000] m".
+#include "replay/rollback_internal.h"
+
+namespace tandem {
+
+using namespace state_detail;
+using namespace rollback_detail;
+
+namespace {
+
+// Ranges restored (the portable restore's, state_validate.cpp).
+constexpr Q32 k_max_coordinate = k_max_world_coordinate * 2;
+constexpr Q32 k_max_speed = k_max_linear_speed * 4;
+constexpr Q32 k_max_spin = k_max_angular_speed * 64;  // small bodies spin fast; the rim speed is what matters
+constexpr Q32 k_max_impulse = Q32::from_raw(int64_t{400000000} << 32);
+constexpr int64_t k_unit_tolerance = int64_t{1} << 16;
+constexpr size_t k_pair_bytes = 16;
+
+/// What the first pass learns and the checks of later records need
+/// (per-thread, reused, so a warm restore does not allocate).
+struct Scratch {
+  std::vector<uint8_t> body_alive;
+  std::vector<uint8_t> body_simulated;
+  std::vector<uint8_t> shape_alive;
+  std::vector<int32_t> shape_body;
+  std::vector<uint8_t> joint_alive;
+  std::vector<int32_t> tail;  // second pass: each body's last listed shape
+};
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+size_t body_record_bytes(uint8_t present) {
+  size_t n = 2 + 32;
+  if (present & k_has_velocity) n += 24;
+  if (present & k_has_force) n += 24;
+  if (present & k_has_sleep_time) n += 8;
+  if (present & k_has_sleep_island) n += 4;
+  if (present & k_has_user_data) n += 8;
+  if (present & k_has_damping) n += 16;
+  if (present & k_has_gravity_scale) n += 8;
+  return n;
+}
+
+size_t shape_record_bytes(uint8_t bits) {
+  size_t n = 5;
+  if (bits & k_shape_has_materials) n += 24;
+  if (bits & k_shape_has_filter) n += 20;
+  if (bits & k_shape_has_user_data) n += 8;
+  return n;
+}
+
+template <bool Apply>
+class Decoder {
+ public:
+  Decoder(const RollbackBuffer& buf, World* w)
+      : buf_(buf), data_(buf.image.data()), size_(buf.image.size()), w_(w), sc_(scratch()) {}
+
+  Status run() {
+    if (!Apply) {
+      if (!need(k_hashed_from, "header (magic, version, broad-phase kind)")) return status();
+      if (std::memcmp(data_, k_rollback_magic, 4) != 0) {
+        fail(0, "expected magic \"TNDR\" (a compact rollback image)");
+        return status();
+      }
+      pos_ = 4;
+      const uint32_t version = u32();
+      if (version != k_rollback_format_version) {
+        fail(4, "expected rollback format version " + std::to_string(k_rollback_format_version) + ", got " +
+                    std::to_string(version));
+        return status();
+      }
+      if (data_[k_kind_offset] > static_cast<uint8_t>(BroadPhaseKind::tree)) {
+        fail(k_kind_offset, "expected a broad-phase kind 0..3, got " + std::to_string(data_[k_kind_offset]));
+        return status();
+      }
+    }
+    pos_ = k_hashed_from;
+    world();
+    if (ok()) pool(Apply ? &w_->body_pool : nullptr, "body_slot", k_max_bodies, &sc_.body_alive);
+    if (ok()) bodies();
+    if (ok()) pool(Apply ? &w_->shape_pool : nullptr, "shape_slot", k_max_shapes, &sc_.shape_alive);
+    if (ok()) shapes();
+    if (ok()) contacts();
+    if (ok()) pairs();
+    if (ok()) joints();
+    if (ok() && pos_ != size_) {
+      fail(pos_, "expected the end of the image, " + std::to_string(size_ - pos_) + " bytes left over");
+    }
+    if (ok() && Apply) finish();
+    return status();
+  }
+
+ private:
+  // --- reading -------------------------------------------------------------
+  bool ok() const { return error_.empty(); }
+  Status status() const {
+    if (ok()) return Status{};
+    return make_status(StatusCode::invalid_argument, "rollback_restore: " + error_);
+  }
+  void context(const char* kind, int64_t index = -1) {
+    kind_ = kind;
+    index_ = index;
+  }
+  /// Refuses at byte `at`: "offset N: <record> <what>".
+  [[gnu::cold, gnu::noinline]] void fail(size_t at, const std::string& what) {
+    if (!ok()) return;
+    error_ = "offset ";
+    error_ += std::to_string(at);
+    error_ += ": ";
+    if (kind_ != nullptr) {
+      error_ += kind_;
+      if (index_ >= 0) {
+        error_ += ' ';
+        error_ += std::to_string(index_);
+      }
+      error_ += ' ';
+    }
+    error_ += what;
+  }
+  /// True when n more bytes are there (else refuses, naming `what`).
+  bool need(size_t n, const char* what) {
+    if (n <= size_ - pos_) [[likely]] {
+      return true;
+    }
+    fail(pos_, std::string("expected ") + std::to_string(n) + " bytes of " + what + ", " +
+                   std::to_string(size_ - pos_) + " left");
+    return false;
+  }
+  // Unchecked little-endian loads (after need()).
+  uint8_t u8() { return data_[pos_++]; }
+  uint16_t u16() {
+    const uint16_t v = load_le16(data_ + pos_);
+    pos_ += 2;
+    return v;
+  }
+  uint32_t u32() {
+    const uint32_t v = load_le32(data_ + pos_);
+    pos_ += 4;
+    return v;
+  }
+  uint64_t u64() {
+    const uint64_t v = load_le64(data_ + pos_);
+    pos_ += 8;
+    return v;
+  }
+  int32_t i32() { return static_cast<int32_t>(u32()); }
+  Q32 q32() { return Q32::from_raw(static_cast<int64_t>(u64())); }
+  /// A Q32 within ±lim (checked in the first pass).
+  Q32 q32(const char* field, Q32 lim, const char* unit) {
+    const size_t at = pos_;
+    const Q32 v = q32();
+    if (!Apply && !(-lim <= v && v <= lim)) refuse_range(at, field, v, -lim, lim, unit);
+    return v;
+  }
+  [[gnu::cold, gnu::noinline]] void refuse_range(size_t at, const char* field, Q32 v, Q32 lo, Q32 hi,
+                                                 const char* unit) {
+    std::string m(field);
+    m += ' ';
+    m += to_string(v);
+    m += *unit ? " " : "";
+    m += unit;
+    m += " is outside [";
+    m += to_string(lo);
+    m += ", ";
+    m += to_string(hi);
+    m += "]";
+    m += *unit ? " " : "";
+    m += unit;
+    fail(at, m);
+  }
+  /// Runs the portable format's ReadVisitor at the current offset (same
+  /// checks and messages as the portable restore, offsets absolute).
+  template <typename F>
+  void visited(F&& f) {
+    ByteReader br(data_, size_);
+    br.bytes(pos_, "");
+    br.set_context(kind_, index_);
+    ReadVisitor v{&br};
+    f(v);
+    if (!br.ok()) {
+      if (ok()) error_ = br.error();
+      return;
+    }
+    pos_ = br.offset();
+  }
+
+  // --- sections ------------------------------------------------------------
+  void world() {
+    context("world");
+    WorldDef def{};
+    uint64_t steps = 0;
+    int32_t solver_bodies = 0;
+    visited([&](ReadVisitor& v) {
+      visit_world_def(v, def);
+      v.u64("step_count", steps);
+      v.i32("last_solver_body_count", solver_bodies);
+    });
+    if (!ok() || !Apply) return;
+    const int32_t cookie = w_->def.internal_cookie;
+    w_->def = def;
+    w_->def.internal_cookie = cookie;
+    w_->def.broad_phase = static_cast<BroadPhaseKind>(data_[k_kind_offset]);
+    w_->step_count = steps;
+    w_->last_solver_body_count = solver_bodies;
+  }
+
+  void pool(IdPool* pool, const char* kind, int32_t max_capacity, std::vector<uint8_t>* alive) {
+    context(kind);
+    if (!need(4, "capacity")) return;
+    const size_t at = pos_;
+    const uint32_t cap = u32();
+    if (!Apply && (cap > static_cast<uint32_t>(max_capacity) || cap > (size_ - pos_) / 5)) {
+      fail(at, "capacity " + std::to_string(cap) + " is above " + std::to_string(max_capacity) +
+                   " or the bytes left (" + std::to_string(size_ - pos_) + ", 5 per slot)");
+      return;
+    }
+    if (!Apply) {
+      alive->assign(cap, 0);
+    } else {
+      pool->generations.resize(cap);
+      pool->alive.resize(cap);
+      pool->free_heap.clear();
+      pool->alive_count = 0;
+    }
+    for (uint32_t i = 0; i < cap; ++i) {
+      const size_t slot_at = pos_;
+      const uint32_t g = u32();
+      const uint8_t live = u8();
+      if (!Apply) {
+        if (g == 0 || live > 1) {
+          context(kind, i);
+          fail(slot_at, "generation " + std::to_string(g) + " / alive " + std::to_string(live) +
+                            ": expected a generation ≥ 1 and alive 0 or 1");
+          return;
+        }
+        (*alive)[i] = live;
+      } else {
+        pool->generations[i] = g;
+        pool->alive[i] = live;
+        if (live != 0) {
+          ++pool->alive_count;
+        } else {
+          pool->free_heap.push_back(static_cast<int32_t>(i));  // ascending: a valid min-heap
+        }
+      }
+    }
+  }
+
+  void bodies();
+  void shapes();
+  void contacts();
+  void read_pairs(std::vector<PairRecord>* out, const char* kind);
+  void pairs();
+  void joints();
+  void finish();
+
+  const RollbackBuffer& buf_;
+  const uint8_t* data_;
+  size_t size_;
+  size_t pos_ = 0;
+  World* w_;
+  Scratch& sc_;
+  std::string error_;
+  const char* kind_ = nullptr;
+  int64_t index_ = -1;
+};
+
+template <bool Apply>
+void Decoder<Apply>::bodies() {
+  const size_t cap = sc_.body_alive.size();
+  if (!Apply) {
+    if (buf_.masses.size() < cap) {
+      fail(pos_, "the buffer's body masses hold " + std::to_string(buf_.masses.size()) + " entries, the image needs " +
+                     std::to_string(cap));
+      return;
+    }
+    sc_.body_simulated.assign(cap, 0);
+  } else {
+    w_->bodies.resize(cap);
+    w_->body_sims.resize(cap);
+  }
+  const Q32 unit_lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance);
+  for (size_t i = 0; i < cap; ++i) {
+    if (sc_.body_alive[i] == 0) {
+      if (Apply) {
+        w_->bodies[i] = Body{};
+        w_->body_sims[i] = BodySim{};
+      }
+      continue;
+    }
+    context("body", static_cast<int64_t>(i));
+    const size_t at = pos_;
+    if (!need(2, "body flags")) return;
+    const uint8_t flags = u8();
+    const uint8_t present = u8();
+    const uint8_t type = flags & k_body_type_mask;
+    if (!Apply) {
+      if (type > static_cast<uint8_t>(BodyType::dynamic_body) || (flags & 0x80) != 0 || (present & 0x80) != 0) {
+        fail(at, "flags " + std::to_string(flags) + " / presence " + std::to_string(present) +
+                     ": expected a body type 0..2 and defined bits only");
+        return;
+      }
+      if (!need(body_record_bytes(present) - 2, "the body record")) return;
+    }
+    Transform xf;
+    xf.p.x = q32("position.x", k_max_coordinate, "m");
+    xf.p.y = q32("position.y", k_max_coordinate, "m");
+    const size_t rot_at = pos_;
+    xf.q.c = q32("rotation.c", unit_lim, "");
+    xf.q.s = q32("rotation.s", unit_lim, "");
+    if (!Apply && ok()) {
+      const Q32 n = xf.q.c * xf.q.c + xf.q.s * xf.q.s;  // components ≤ 1 + 2^-16: no saturation
+      if ((n - Q32::one()).raw > k_unit_tolerance || (Q32::one() - n).raw > k_unit_tolerance) {
+        fail(rot_at, "rotation (" + to_string(xf.q.c) + ", " + to_string(xf.q.s) +
+                         ") is not a unit vector (squared length " + to_string(n) + ")");
+      }
+    }
+    const bool moving = type != static_cast<uint8_t>(BodyType::static_body);
+    Vec2 v{};
+    Q32 omega;
+    if (present & k_has_velocity) {
+      const Q32 vmax = moving ? k_max_speed : Q32::zero();
+      v.x = q32("linear_velocity.x", vmax, "m/s");
+      v.y = q32("linear_velocity.y", vmax, "m/s");
+      omega = q32("angular_velocity", moving ? k_max_spin : Q32::zero(), "rad/s");
+    }
+    Vec2 force{};
+    Q32 torque;
+    if (present & k_has_force) {
+      force.x = q32("force.x", k_max_force, "N");
+      force.y = q32("force.y", k_max_force, "N");
+      torque = q32("torque", k_max_torque, "N·m");
+    }
+    Q32 sleep_time;
+    if (present & k_has_sleep_time) {
+      const size_t st_at = pos_;
+      sleep_time = q32();
+      if (!Apply && (sleep_time < Q32::zero() || sleep_time > k_time_to_sleep)) {
+        refuse_range(st_at, "sleep_time", sleep_time, Q32::zero(), k_time_to_sleep, "s");
+      }
+    }
+    int32_t island = k_null_index;
+    if (present & k_has_sleep_island) {
+      const size_t is_at = pos_;
+      island = i32();
+      if (!Apply && (island < 0 || static_cast<size_t>(island) >= cap || sc_.body_alive[static_cast<size_t>(island)] == 0)) {
+        fail(is_at, "sleep_island " + std::to_string(island) + " is not a live body");
+      }
+    }
+    const uint64_t user = (present & k_has_user_data) ? u64() : 0;
+    Q32 lin_damp, ang_damp;
+    if (present & k_has_damping) {
+      const size_t d_at = pos_;
+      lin_damp = q32();
+      ang_damp = q32();
+      if (!Apply && (lin_damp < Q32::zero() || lin_damp > k_max_damping)) {
+        refuse_range(d_at, "linear_damping", lin_damp, Q32::zero(), k_max_damping, "1/s");
+      }
+      if (!Apply && (ang_damp < Q32::zero() || ang_damp > k_max_damping)) {
+        refuse_range(d_at + 8, "angular_damping", ang_damp, Q32::zero(), k_max_damping, "1/s");
+      }
+    }
+    const Q32 gravity_scale =
+        (present & k_has_gravity_scale) ? q32("gravity_scale", k_max_gravity_scale, "") : Q32::one();
+    if (!ok()) return;
+    const bool awake = (flags & k_body_awake) != 0;
+    const bool enabled = (flags & k_body_enabled) != 0;
+    if (!Apply) {
+      sc_.body_simulated[i] = moving && awake && enabled ? 1 : 0;
+      continue;
+    }
+    const RollbackBodyMass& m = buf_.masses[i];
+    Body& b = w_->bodies[i];
+    b.type = static_cast<BodyType>(type);
+    b.head_shape = k_null_index;
+    b.shape_count = 0;
+    b.mass = m.mass;
+    b.rotational_inertia = m.rotational_inertia;
+    b.sleep_time = sleep_time;
+    b.sleep_island = island;
+    b.user_data = user;
+    b.enable_sleep = (flags & k_body_enable_sleep) != 0;
+    b.awake = awake;
+    b.enabled = enabled;
+    b.fixed_rotation = (flags & k_body_fixed_rotation) != 0;
+    b.bullet = (flags & k_body_bullet) != 0;
+    b.min_extent = m.min_extent;
+    b.max_extent = m.max_extent;
+    BodySim& s = w_->body_sims[i];
+    s.transform = xf;
+    s.local_center = m.local_center;
+    s.center = transform_point(xf, m.local_center);
+    s.linear_velocity = v;
+    s.angular_velocity = omega;
+    s.force = force;
+    s.torque = torque;
+    s.inv_mass = m.inv_mass;
+    s.inv_inertia = m.inv_inertia;
+    s.linear_damping = lin_damp;
+    s.angular_damping = ang_damp;
+    s.gravity_scale = gravity_scale;
+  }
+}
+
+template <bool Apply>
+void Decoder<Apply>::shapes() {
+  const size_t cap = sc_.shape_alive.size();
+  const size_t body_cap = sc_.body_alive.size();
+  if (!Apply) {
+    if (buf_.geometries.size() < cap) {
+      fail(pos_, "the buffer's geometries hold " + std::to_string(buf_.geometries.size()) +
+                     " entries, the image needs " + std::to_string(cap));
+      return;
+    }
+    sc_.shape_body.assign(cap, k_null_index);
+  } else {
+    w_->shapes.resize(cap);
+    w_->shape_geometries.resize(cap);
+    sc_.tail.assign(body_cap, k_null_index);
+  }
+  const ShapeDef& d = default_shape();
+  for (size_t i = 0; i < cap; ++i) {
+    if (sc_.shape_alive[i] == 0) {
+      if (Apply) {
+        w_->shapes[i] = Shape{};
+        w_->shape_geometries[i] = ShapeGeometry{};
+      }
+      continue;
+    }
+    context("shape", static_cast<int64_t>(i));
+    const size_t at = pos_;
+    if (!Apply && !need(5, "the shape record")) return;
+    const int32_t body = i32();
+    const uint8_t bits = u8();
+    const uint8_t type = bits & k_shape_type_mask;
+    if (!Apply) {
+      if (body < 0 || static_cast<size_t>(body) >= body_cap || sc_.body_alive[static_cast<size_t>(body)] == 0) {
+        fail(at, "body " + std::to_string(body) + " is not a live body");
+        return;
+      }
+      const ShapeGeometry& g = buf_.geometries[i];
+      if (type > static_cast<uint8_t>(ShapeType::chain_segment) || static_cast<uint8_t>(g.type) != type ||
+          (g.type == ShapeType::polygon && (g.polygon.count < 3 || g.polygon.count > k_max_polygon_vertices))) {
+        fail(at + 4, "type " + std::to_string(type) + " does not match the buffer's geometry (type " +
+                         std::to_string(static_cast<int32_t>(g.type)) + ")");
+        return;
+      }
+      if (!need(shape_record_bytes(bits) - 5, "the shape record")) return;
+      sc_.shape_body[i] = body;
+    }
+    Q32 friction = d.friction, restitution = d.restitution, density = d.density;
+    if (bits & k_shape_has_materials) {
+      const size_t m_at = pos_;
+      friction = q32();
+      restitution = q32();
+      density = q32();
+      if (!Apply) {
+        if (friction < Q32::zero() || friction > k_max_friction) {
+          refuse_range(m_at, "friction", friction, Q32::zero(), k_max_friction, "");
+        } else if (restitution < Q32::zero() || restitution > Q32::one()) {
+          refuse_range(m_at + 8, "restitution", restitution, Q32::zero(), Q32::one(), "");
+        } else if (density < Q32::zero() || density > k_max_density) {
+          refuse_range(m_at + 16, "density", density, Q32::zero(), k_max_density, "kg/m²");
+        }
+      }
+    }
+    Filter filter{};
+    if (bits & k_shape_has_filter) {
+      filter.category_bits = u64();
+      filter.mask_bits = u64();
+      filter.group_index = i32();
+    }
+    const uint64_t user = (bits & k_shape_has_user_data) ? u64() : 0;
+    if (!ok()) return;
+    if (!Apply) continue;
+    Shape& s = w_->shapes[i];
+    s.body_index = body;
+    s.type = static_cast<ShapeType>(type);
+    s.friction = friction;
+    s.restitution = restitution;
+    s.density = density;
+    s.filter = filter;
+    s.user_data = user;
+    s.is_sensor = (bits & k_shape_sensor) != 0;
+    s.enable_hit_events = (bits & k_shape_hit_events) != 0;
+    copy_geometry(buf_.geometries[i], &w_->shape_geometries[i]);
+    // Shape lists run in ascending shape index.
+    Body& b = w_->bodies[static_cast<size_t>(body)];
+    int32_t& tail = sc_.tail[static_cast<size_t>(body)];
+    s.prev_shape = tail;
+    s.next_shape = k_null_index;
+    if (tail == k_null_index) {
+      b.head_shape = static_cast<int32_t>(i);
+    } else {
+      w_->shapes[static_cast<size_t>(tail)].next_shape = static_cast<int32_t>(i);
+    }
+    tail = static_cast<int32_t>(i);
+    ++b.shape_count;
+    s.aabb = compute_shape_aabb(w_->shape_geometries[i], w_->body_sims[static_cast<size_t>(body)].transform);
+  }
+}
+
+template <bool Apply>
+void Decoder<Apply>::contacts() {
+  context("contacts");
+  if (!need(4, "count")) return;
+  const uint32_t n = u32();
+  if (!Apply && n > (size_ - pos_) / 9) {
+    fail(pos_ - 4, "count " + std::to_string(n) + " needs more than the " + std::to_string(size_ - pos_) +
+                       " bytes left (9 per contact at least)");
+    return;
+  }
+  const int32_t shape_cap = static_cast<int32_t>(sc_.shape_alive.size());
+  const int32_t body_cap = static_cast<int32_t>(sc_.body_alive.size());
+  if (Apply) w_->contacts.resize(n);
+  uint64_t prev_key = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    context("contact", i);
+    const size_t at = pos_;
+    if (!Apply && !need(9, "the contact header")) return;
+    const int32_t a = i32();
+    const int32_t b = i32();
+    const uint8_t head = u8();
+    const int32_t count = head & k_contact_count_mask;
+    if (!Apply) {
+      if (a < 0 || b >= shape_cap || a >= b || (head & ~(k_contact_count_mask | k_contact_full)) != 0 || count > 2) {
+        fail(at, "shapes (" + std::to_string(a) + ", " + std::to_string(b) + ") / header " + std::to_string(head) +
+                     ": expected two shapes of the pool in ascending order and 0..2 points");
+        return;
+      }
+      const uint64_t key = shape_pair_key(a, b);
+      if (i > 0 && key <= prev_key) {
+        fail(at, "is not sorted by shape pair");
+        return;
+      }
+      prev_key = key;
+    }
+    if ((head & k_contact_full) != 0) {
+      Contact c{};
+      const size_t rec_at = pos_;
+      visited([&](ReadVisitor& v) { visit_contact(v, c); });
+      if (!ok()) return;
+      if (!Apply) {
+        if (c.shape_a != a || c.shape_b != b || c.manifold.point_count != count || c.body_a < 0 ||
+            c.body_a >= body_cap || c.body_b < 0 || c.body_b >= body_cap) {
+          fail(rec_at, "full record disagrees with its header or names bodies outside the pool");
+          return;
+        }
+        for (int32_t k = 0; k < count; ++k) {
+          const size_t kk = static_cast<size_t>(k);
+          if (abs(c.normal_impulse[kk]) > k_max_impulse || abs(c.tangent_impulse[kk]) > k_max_impulse) {
+            fail(rec_at, "stored impulse of point " + std::to_string(k) + " is outside ±" + to_string(k_max_impulse) +
+                             " N·s");
+            return;
+          }
+        }
+      } else {
+        w_->contacts[i] = c;
+      }
+      continue;
+    }
+    if (!Apply) {
+      if (sc_.shape_alive[static_cast<size_t>(a)] == 0 || sc_.shape_alive[static_cast<size_t>(b)] == 0 ||
+          sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(a)])] == 0 ||
+          sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(b)])] == 0) {
+        fail(at, "is compact, but its shapes are not both alive on simulated bodies");
+        return;
+      }
+      if (!need(static_cast<size_t>(count) * 18, "the contact points")) return;
+    }
+    Contact* c = nullptr;
+    if (Apply) {
+      // The manifold geometry and mixed materials are zero: the next step
+      // recomputes them (rollback.h).
+      c = &w_->contacts[i];
+      *c = Contact{};
+      c->shape_a = a;
+      c->shape_b = b;
+      c->generation_a = w_->shape_pool.generations[static_cast<size_t>(a)];
+      c->generation_b = w_->shape_pool.generations[static_cast<size_t>(b)];
+      c->body_a = w_->shapes[static_cast<size_t>(a)].body_index;
+      c->body_b = w_->shapes[static_cast<size_t>(b)].body_index;
+      c->flags = count > 0 ? k_contact_touching : 0u;
+      c->manifold.point_count = count;
+    }
+    for (int32_t k = 0; k < count; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      const uint16_t id = u16();
+      const Q32 jn = q32(k == 0 ? "points[0].normal_impulse" : "points[1].normal_impulse", k_max_impulse, "N·s");
+      const Q32 jt = q32(k == 0 ? "points[0].tangent_impulse" : "points[1].tangent_impulse", k_max_impulse, "N·s");
+      if (Apply) {
+        c->manifold.points[kk].id = id;
+        c->normal_impulse[kk] = jn;
+        c->tangent_impulse[kk] = jt;
+      }
+    }
+    if (!ok()) return;
+  }
+}
+
+template <bool Apply>
+void Decoder<Apply>::read_pairs(std::vector<PairRecord>* out, const char* kind) {
+  context(kind);
+  if (!need(4, "count")) return;
+  const uint32_t n = u32();
+  if (!Apply && n > (size_ - pos_) / k_pair_bytes) {
+    fail(pos_ - 4, "count " + std::to_string(n) + " needs more than the " + std::to_string(size_ - pos_) +
+                       " bytes left");
+    return;
+  }
+  if (Apply) out->resize(n);
+  const int32_t shape_cap = static_cast<int32_t>(sc_.shape_alive.size());
+  PairRecord prev{};
+  for (uint32_t i = 0; i < n; ++i) {
+    const size_t at = pos_;
+    PairRecord p;
+    p.shape_a = i32();
+    p.shape_b = i32();
+    p.generation_a = u32();
+    p.generation_b = u32();
+    if (!Apply && (p.shape_a < 0 || p.shape_a >= shape_cap || p.shape_b < 0 || p.shape_b >= shape_cap ||
+                   (i > 0 && shape_pair_key(p.shape_a, p.shape_b) <= shape_pair_key(prev.shape_a, prev.shape_b)))) {
+      context(kind, i);
+      fail(at, "names a shape outside the pool or is not sorted");
+      return;
+    }
+    prev = p;
+    if (Apply) (*out)[i] = p;
+  }
+}
+
+template <bool Apply>
+void Decoder<Apply>::pairs() {
+  context("touching");
+  if (!need(1, "derived flag")) return;
+  const size_t at = pos_;
+  const uint8_t derived = u8();
+  if (!Apply && derived > 1) {
+    fail(at, "derived flag " + std::to_string(derived) + ": expected 0 or 1");
+    return;
+  }
+  if (derived != 0) {
+    if (Apply) {
+      std::vector<PairRecord>& t = w_->events.touching;
+      t.clear();
+      for (const Contact& c : w_->contacts) {
+        if ((c.flags & k_contact_touching) != 0) t.push_back(PairRecord{c.shape_a, c.shape_b, c.generation_a, c.generation_b});
+      }
+    }
+  } else {
+    read_pairs(Apply ? &w_->events.touching : nullptr, "touching");
+  }
+  if (ok()) read_pairs(Apply ? &w_->events.sensor_overlaps : nullptr, "sensor_overlap");
+}
+
+template <bool Apply>
+void Decoder<Apply>::joints() {
+  pool(Apply ? &w_->joint_pool : nullptr, "joint_slot", k_max_bodies, &sc_.joint_alive);
+  if (!ok()) return;
+  const std::vector<uint8_t>& alive = Apply ? w_->joint_pool.alive : sc_.joint_alive;
+  const size_t cap = alive.size();
+  const int32_t body_cap = static_cast<int32_t>(sc_.body_alive.size());
+  if (Apply) w_->joints.joints.resize(cap);
+  for (size_t i = 0; i < cap; ++i) {
+    if (alive[i] == 0) {
+      if (Apply) w_->joints.joints[i] = Joint{};
+      continue;
+    }
+    context("joint", static_cast<int64_t>(i));
+    const size_t at = pos_;
+    Joint j{};
+    visited([&](ReadVisitor& v) { visit_joint(v, j); });
+    if (!ok()) return;
+    if (!Apply) {
+      const auto live = [&](int32_t b) { return b >= 0 && b < body_cap && sc_.body_alive[static_cast<size_t>(b)] != 0; };
+      if (!live(j.body_a) || !live(j.body_b) || j.body_a == j.body_b) {
+        fail(at, "joins bodies (" + std::to_string(j.body_a) + ", " + std::to_string(j.body_b) +
+                     "), which are not two live bodies");
+        return;
+      }
+      const JointFieldRange* bad = first_joint_field_out_of_range(j);
+      if (bad != nullptr) {
+        // The field's offset inside the record, found by walking the visitor.
+        Joint copy = j;
+        const size_t field_at = at + field_offset_in(bad->field, [&](OffsetVisitor& ov) { visit_joint(ov, copy); });
+        refuse_range(field_at, bad->field, bad->get(j), bad->lo, bad->hi, bad->unit);
+        return;
+      }
+      if (j.lower > j.upper) {
+        fail(at, "lower " + to_string(j.lower) + " is above upper " + to_string(j.upper));
+        return;
+      }
+    } else {
+      w_->joints.joints[i] = j;
+    }
+  }
+  context("pending joint events");
+  if (!need(4, "count")) return;
+  const uint32_t n = u32();
+  if (!Apply && n > (size_ - pos_) / 53) {
+    fail(pos_ - 4, "count " + std::to_string(n) + " needs more than the bytes left");
+    return;
+  }
+  if (Apply) w_->joints.pending.resize(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    context("pending joint event", i);
+    JointEvent e{};
+    visited([&](ReadVisitor& v) { visit_joint_event(v, e); });
+    if (!ok()) return;
+    if (Apply) {
+      e.joint.world = w_->id;
+      e.body_a.world = w_->id;
+      e.body_b.world = w_->id;
+      w_->joints.pending[i] = e;
+    }
+  }
+}
+
+/// What every restore does after replacing the records (as commit_image).
+template <bool Apply>
+void Decoder<Apply>::finish() {
+  World* w = w_;
+  w->contact_scratch.clear();
+  w->joints.events.clear();
+  rebuild_joint_filter(w);
+  EventState& e = w->events;
+  e.touching_next.clear();
+  e.sensor_next.clear();
+  e.hit_candidates.clear();
+  events_clear_reported(&e);
+  broad_phase_reset(w);
+  reserve_contact_headroom(w);
+  events_reserve_headroom(w);
+}
+
+}  // namespace
+
+Status rollback_restore(WorldId world, const RollbackBuffer& buffer) {
+  World* w = nullptr;
+  Status s = resolve_world(world, "rollback_restore", true, &w);
+  if (!s.ok()) return s;
+  s = Decoder<false>(buffer, nullptr).run();
+  if (!s.ok()) return s;
+  s = Decoder<true>(buffer, w).run();
+  TANDEM_ASSERT(s.ok());
+  return s;
+}
+
+}  // namespace tandem
