@@ -95,6 +95,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
       out->status = s;
     }
   }
+  if (o.config.record_replay) out->replay = session.replay_bytes();
   transport.close(200);
   out->stop = session.stop_info();
   out->stats = session.stats();

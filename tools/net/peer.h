@@ -40,6 +40,7 @@ struct PeerResult {
   uint64_t final_hash = 0;         ///< confirmed hash of tick `ticks` (0 if not reached)
   std::vector<uint64_t> hashes;    ///< confirmed hash of every tick 1…, in order
   std::vector<std::string> artifacts;  ///< files written
+  std::vector<uint8_t> replay;     ///< with config.record_replay: the recorded replay (Session::replay_bytes)
   double seconds = 0;
 };
 
