@@ -172,7 +172,13 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
     header.time_step = c.time_step;
     header.keyframe_interval = c.keyframe_interval;
     header.tick_hashes = true;
-    s = writer_.write_header(header, snap_world_[0]);
+    if (!c.replay_scene.empty()) {
+      header.has_scene_bytes = true;
+      header.scene_bytes = c.replay_scene;
+      header.has_scene_hash = true;
+      header.scene_hash = XXH3_64bits(c.replay_scene.data(), c.replay_scene.size());
+    }
+    s = writer_.write_header(header, snap_world_[0], snap_game_[0]);
     if (!s.ok()) return s;
   }
   stop_ = {};
@@ -296,9 +302,13 @@ void Session::confirm() {
       for (const Command& c : snap_commands_[h]) rec.commands.push_back(c);
       rec.has_hash = true;
       rec.hash = world_hash_[ring(t)];
+      if (callbacks_.save_game) {
+        rec.has_game_state = true;
+        rec.game_state = snap_game_[h];
+      }
       Status s = writer_.append_tick(std::move(rec));
       if (s.ok() && config_.keyframe_interval != 0 && t % config_.keyframe_interval == 0) {
-        s = writer_.append_keyframe(t, snap_world_[h]);
+        s = writer_.append_keyframe(t, snap_world_[h], snap_game_[h]);
       }
       if (!s.ok()) {
         stop(SessionState::error, "recording tick " + std::to_string(t) + ": " + s.message);

@@ -46,9 +46,12 @@
 // RECORDING. With record_replay set the session records every confirmed
 // tick: a user_input command holding all players' inputs (player order,
 // input_bytes each), then the engine commands the callback made, and the
-// world hash. `tandem verify` re-runs it without the game (user_input
-// commands are ignored by apply_command). Keyframes every keyframe_interval
-// confirmed ticks. Game state is not in the replay.
+// world hash, and the game state after the tick (save_game's bytes, replay
+// format 2), also at every keyframe. `tandem verify` re-runs it without the
+// game (user_input commands are ignored by apply_command) and checks the game
+// states when it knows the game (VerifyOptions::game; the CLI knows the
+// bundled arena by the replay's scene bytes, SessionConfig::replay_scene).
+// Keyframes every keyframe_interval confirmed ticks.
 //
 // ALLOCATION. Rings (inputs, hashes, snapshots) are sized at start(); after
 // the snapshot buffers have grown to the world's size and the command vector
@@ -106,6 +109,7 @@ struct SessionConfig {
   uint32_t disconnect_timeout_frames = 300;  ///< a player silent this many frames has left (0: never)
   bool record_replay = false;       ///< record confirmed ticks into an in-memory replay
   uint32_t keyframe_interval = 600; ///< replay keyframes every this many ticks (0: only tick 0)
+  std::vector<uint8_t> replay_scene; ///< embedded in the replay header as its scene bytes (empty: none), e.g. what game and settings
 };
 
 /// One tick's inputs of every player, player order (a view; valid during the call).

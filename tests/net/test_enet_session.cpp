@@ -5,6 +5,7 @@
 // and field; a peer that vanishes is reported. Every run is bounded in time.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -135,10 +136,17 @@ void play_and_check(uint32_t players, SessionMode mode) {
     REQUIRE(rs.ok());
     // (The session still runs, so the replay has no END chunk yet: info.truncated.)
     CHECK(replay.tick_count() >= ticks);
-    const VerifyReport v = verify_replay(replay);
+    // With the arena's logic (named by the replay's scene bytes), the recorded scores are checked too.
+    uint32_t scene_players = 0, scene_crates = 0;
+    REQUIRE(arena::parse_replay_scene(replay.header.scene_bytes, &scene_players, &scene_crates));
+    CHECK(scene_players == players);
+    VerifyOptions vo;
+    REQUIRE(arena::verify_game_step(scene_players, scene_crates, &vo.game).ok());
+    const VerifyReport v = verify_replay(replay, vo);
     INFO(format_verify_report(v));
     CHECK(v.ok());
     CHECK(v.hashes_checked == replay.tick_count());
+    CHECK(v.game_states_checked == replay.tick_count());
     // Every peer recorded the same ticks: the same commands and hashes.
     if (e == 0) continue;
     Replay first;

@@ -37,6 +37,7 @@
 #include "replay/synctest.h"
 #include "replay/verify.h"
 #include "scene/scene.h"
+#include "tools/net/arena_game.h"
 
 namespace tandem::cli {
 namespace {
@@ -268,6 +269,16 @@ FileVerdict verify_file(const std::string& path, const ProgressCallback& progres
   v.truncated = info.truncated;
   VerifyOptions options;
   options.progress = progress;
+  // A session recording of the bundled arena: its scores are checked too.
+  uint32_t players = 0, crates = 0;
+  if (replay.header.has_scene_bytes && arena::parse_replay_scene(replay.header.scene_bytes, &players, &crates)) {
+    const Status g = arena::verify_game_step(players, crates, &options.game);
+    if (!g.ok()) {
+      v.rc = 2;
+      v.error = path + ": arena game logic: " + g.message;
+      return v;
+    }
+  }
   v.report = verify_replay(replay, options);
   v.rc = verify_exit_code(v.report);
   if (v.rc == 2) v.error = path + ": " + v.report.error.message;
@@ -288,6 +299,8 @@ Json verdict_json(const FileVerdict& v) {
   j["ticks_run"] = rep.ticks_run;
   j["hashes_checked"] = rep.hashes_checked;
   j["keyframes_checked"] = rep.keyframes_checked;
+  j["game_states_recorded"] = rep.game_states_recorded;
+  j["game_states_checked"] = rep.game_states_checked;
   j["refused_commands"] = rep.refused_commands;
   j["skipped_payloads"] = rep.skipped_payloads;
   if (rep.mismatch) {
@@ -295,6 +308,7 @@ Json verdict_json(const FileVerdict& v) {
     j["expected_hash"] = hex64(rep.expected_hash);
     j["actual_hash"] = hex64(rep.actual_hash);
     j["self_consistent"] = rep.self_consistent;
+    if (rep.game_state_mismatch) j["game_state_mismatch"] = true;
     if (rep.located) {
       j["located_tick"] = rep.located_tick;
       j["difference"] = difference_json(rep.difference);

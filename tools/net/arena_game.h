@@ -9,7 +9,12 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "fixed/fixed_math.h"
@@ -138,6 +143,50 @@ struct Game {
     return c;
   }
 };
+
+/// The replay scene bytes that name an arena game (SessionConfig::replay_scene):
+/// "tandem arena 1: players P crates C".
+inline std::vector<uint8_t> replay_scene(uint32_t player_count, uint32_t crates) {
+  const std::string t = "tandem arena 1: players " + std::to_string(player_count) + " crates " + std::to_string(crates);
+  return std::vector<uint8_t>(t.begin(), t.end());
+}
+
+/// Parses replay_scene()'s bytes; false for anything else (another game, no scene).
+inline bool parse_replay_scene(std::span<const uint8_t> bytes, uint32_t* player_count, uint32_t* crates) {
+  const std::string t(bytes.begin(), bytes.end());
+  unsigned p = 0, c = 0;
+  int used = 0;
+  if (std::sscanf(t.c_str(), "tandem arena 1: players %u crates %u%n", &p, &c, &used) != 2 ||
+      static_cast<size_t>(used) != t.size() || p < 1 || p > k_session_max_players || c > k_max_crates) {
+    return false;
+  }
+  *player_count = p;
+  *crates = c;
+  return true;
+}
+
+/// The arena's game logic for verify_replay (VerifyOptions::game): scores
+/// from the recorded start, one after_step per tick. The players' refs come
+/// from building the arena into a scratch world (same calls, same refs).
+inline Status verify_game_step(uint32_t player_count, uint32_t crates,
+                               std::function<Status(uint64_t, WorldId, std::span<const uint8_t>, std::vector<uint8_t>*)>* out) {
+  Result<WorldId> scratch = create_world(default_world_def());
+  if (!scratch.ok()) return scratch.status;
+  auto game = std::make_shared<Game>();
+  const Status s = game->build(scratch.value, player_count, crates);
+  (void)destroy_world(scratch.value);
+  if (!s.ok()) return s;
+  *out = [game](uint64_t tick, WorldId world, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
+    if (before.size() != game->scores.size() * 8)
+      return Status{StatusCode::invalid_argument, "arena game state of " + std::to_string(before.size()) +
+                                                      " bytes, expected " + std::to_string(game->scores.size() * 8)};
+    game->load(before);
+    game->after_step(tick, world);
+    game->save(after);
+    return Status{};
+  };
+  return Status{};
+}
 
 /// A bot's input for `tick`: a pure function of (seed, player, tick / change_every).
 inline void bot_input(uint64_t seed, uint32_t player, uint64_t tick, uint32_t change_every, uint8_t out[k_input_bytes]) {

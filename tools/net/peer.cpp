@@ -37,7 +37,9 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
     };
   }
   Session session;
-  out->status = session.start(w.value, o.config, std::move(cb));
+  SessionConfig config = o.config;
+  if (config.replay_scene.empty()) config.replay_scene = arena::replay_scene(config.player_count, o.crates);
+  out->status = session.start(w.value, config, std::move(cb));
   if (!out->status.ok()) return;
 
   const auto frame = std::chrono::microseconds(o.frame_us);
