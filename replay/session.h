@@ -24,7 +24,10 @@
 //     rather than run more than prediction_window ticks past the last tick
 //     whose inputs are all known.
 //   Spectators (local_endpoint ≥ player_count) never predict: they step when
-//   all players' inputs for a tick are in (players send them their inputs).
+//   all players' inputs for a tick are in (players send them their inputs),
+//   up to 4 ticks in one frame while they are behind, so one that was cut off
+//   for a while catches up (players keep input_history_ticks of their inputs
+//   to resend it).
 //
 // TIME SYNC (as GGPO's frame advantage): every input packet carries the
 // sender's tick and its advantage over the receiver (its tick minus the
@@ -107,6 +110,8 @@ struct SessionConfig {
   Q32 time_step = Q32::from_ratio(1, 60);  ///< seconds per tick (> 0)
   uint32_t history_ticks = 64;      ///< snapshots kept (for rollbacks and desync images), ≥ prediction_window + 2, ≤ 256
   uint32_t disconnect_timeout_frames = 300;  ///< a player silent this many frames has left (0: never)
+  uint32_t input_history_ticks = 3600; ///< local inputs kept for resending to an endpoint that fell behind (a
+                                       ///< spectator that lost every packet for a while), 256…1 << 20 (60 s at 60 Hz)
   bool record_replay = false;       ///< record confirmed ticks into an in-memory replay
   uint32_t keyframe_interval = 600; ///< replay keyframes every this many ticks (0: only tick 0)
   std::vector<uint8_t> replay_scene; ///< embedded in the replay header as its scene bytes (empty: none), e.g. what game and settings
@@ -172,6 +177,7 @@ struct SessionStats {
   uint64_t commands_refused = 0;    ///< engine commands the world refused (replayed identically)
   uint64_t hashes_compared = 0;     ///< remote confirmed hashes checked
   uint64_t hashes_skipped = 0;      ///< remote hashes never received (the sender's ring had moved on)
+  uint64_t spectators_dropped = 0;  ///< spectators no longer sent to: behind by more than input_history_ticks
   std::string last_rejection;       ///< why the last packet was refused
 };
 
@@ -306,6 +312,7 @@ class Session {
   std::vector<uint8_t> used_;
   std::vector<uint64_t> used_tick_;
   std::vector<uint64_t> contiguous_;  // per player: every input ≤ this is known
+  std::vector<uint8_t> local_history_;  // the local player's inputs, input_history_ticks slots (tick % slots)
 
   // Per ring: local confirmed hash (+ world-only hash for the replay).
   std::vector<uint64_t> hash_;
