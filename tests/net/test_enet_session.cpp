@@ -137,11 +137,12 @@ void play_and_check(uint32_t players, SessionMode mode) {
     // (The session still runs, so the replay has no END chunk yet: info.truncated.)
     CHECK(replay.tick_count() >= ticks);
     // With the arena's logic (named by the replay's scene bytes), the recorded scores are checked too.
-    uint32_t scene_players = 0, scene_crates = 0;
-    REQUIRE(arena::parse_replay_scene(replay.header.scene_bytes, &scene_players, &scene_crates));
+    uint32_t scene_players = 0, first_disc = 0;
+    REQUIRE(arena::parse_replay_scene(replay.header.scene_bytes, &scene_players, &first_disc));
     CHECK(scene_players == players);
+    CHECK(first_disc == 4);  // after the four walls
     VerifyOptions vo;
-    REQUIRE(arena::verify_game_step(scene_players, scene_crates, &vo.game).ok());
+    REQUIRE(arena::verify_game_step(scene_players, first_disc, &vo.game).ok());
     const VerifyReport v = verify_replay(replay, vo);
     INFO(format_verify_report(v));
     CHECK(v.ok());

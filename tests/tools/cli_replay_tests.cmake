@@ -116,6 +116,14 @@ if(TEST net/cli_netplay_desync)
     OUT "MISMATCH  [^\n]*netplay_peer[01].replay: tick 100, expected 0x[0-9a-f]+, got 0x[0-9a-f]+\n.*verified 3 files with 1 job: 2 ok, 1 mismatched, 0 not verified"
     REQUIRES "netplay_desync_artifacts;replay_stack")
 endif()
+# The same from the arena scene file: the verdict includes the scores (game states) checked.
+if(TEST net/cli_netplay_scene_desync)
+  set(net_art_scene ${CMAKE_CURRENT_BINARY_DIR}/net_artifacts_scene)
+  tandem_replay_cli_test(verify-netplay-scene-game-states 1
+    "verify|-j|2|--json|${net_art_scene}/netplay_peer0.replay|${net_art_scene}/netplay_peer1.replay"
+    OUT "\"result\":\"ok\",[^\n]*\"game_states_recorded\":[1-9][0-9]*,\"game_states_checked\":[1-9][0-9]*,.*\"result\":\"mismatch\",[^\n]*\"mismatch_tick\":60,[^\n]*\"difference\":\\{\"record\":\"body\",\"index\":44,"
+    REQUIRES netplay_scene_artifacts)
+endif()
 tandem_replay_cli_test(verify-bad-jobs 2 "verify|--jobs|-1|${out}/stack.tnr" ERR "jobs")
 
 # --- diff -----------------------------------------------------------------------------

@@ -270,9 +270,9 @@ FileVerdict verify_file(const std::string& path, const ProgressCallback& progres
   VerifyOptions options;
   options.progress = progress;
   // A session recording of the bundled arena: its scores are checked too.
-  uint32_t players = 0, crates = 0;
-  if (replay.header.has_scene_bytes && arena::parse_replay_scene(replay.header.scene_bytes, &players, &crates)) {
-    const Status g = arena::verify_game_step(players, crates, &options.game);
+  uint32_t players = 0, first_disc = 0;
+  if (replay.header.has_scene_bytes && arena::parse_replay_scene(replay.header.scene_bytes, &players, &first_disc)) {
+    const Status g = arena::verify_game_step(players, first_disc, &options.game);
     if (!g.ok()) {
       v.rc = 2;
       v.error = path + ": arena game logic: " + g.message;
