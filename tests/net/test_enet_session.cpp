@@ -164,24 +164,24 @@ void play_and_check(uint32_t players, SessionMode mode) {
 
 }  // namespace
 
-TEST_CASE("udp: 2 peers in rollback, 10 % loss, 60 +- 20 ms latency, match the single-machine run; replays verify",
+TEST_CASE("udp: 2 peers in rollback, 10 % loss, 60 +- 20 ms latency, match the single-machine run and their replays verify",
           "[net][session]") {
   play_and_check(2, SessionMode::rollback);
 }
-TEST_CASE("udp: 4 peers in rollback, 10 % loss, 60 +- 20 ms latency, match the single-machine run; replays verify",
+TEST_CASE("udp: 4 peers in rollback, 10 % loss, 60 +- 20 ms latency, match the single-machine run and their replays verify",
           "[net][session]") {
   play_and_check(4, SessionMode::rollback);
 }
-TEST_CASE("udp: 2 peers in lockstep, 10 % loss, 60 +- 20 ms latency, match the single-machine run; replays verify",
+TEST_CASE("udp: 2 peers in lockstep, 10 % loss, 60 +- 20 ms latency, match the single-machine run and their replays verify",
           "[net][session]") {
   play_and_check(2, SessionMode::lockstep);
 }
-TEST_CASE("udp: 4 peers in lockstep, 10 % loss, 60 +- 20 ms latency, match the single-machine run; replays verify",
+TEST_CASE("udp: 4 peers in lockstep, 10 % loss, 60 +- 20 ms latency, match the single-machine run and their replays verify",
           "[net][session]") {
   play_and_check(4, SessionMode::lockstep);
 }
 
-TEST_CASE("udp: an injected desync stops both peers at its tick; artifacts name the body and field", "[net][session]") {
+TEST_CASE("udp: an injected desync stops both peers at its tick, and the artifacts name the body and field", "[net][session]") {
   std::vector<net::PeerOptions> options;
   const std::string dir = std::string(TANDEM_NET_TEST_DIR);
   for (uint32_t e = 0; e < 2; ++e) {

@@ -92,7 +92,7 @@ TEST_CASE("replay format 1: the committed file reads and verifies", "[replay][fi
   CHECK(encode_replay(read_ok(record_scene(spec)), 1, 1) == bytes);
 }
 
-TEST_CASE("replay format 2: game states per tick and per keyframe round-trip; format 1 leaves them out",
+TEST_CASE("replay format 2: game states per tick and per keyframe round-trip, and format 1 leaves them out",
           "[replay][file][version]") {
   Replay r = read_ok(record_scene(RecordSpec{}));
   REQUIRE(r.header.format_version == 2);
