@@ -493,8 +493,12 @@ Status apply_command(WorldId world, const Command& c, BodyId* out_created) {
   const BodyId body = body_id(world, c.body);
   if (c.body.generation == 0 || c.body.index == UINT32_MAX)
     return Status{StatusCode::invalid_handle, describe(c) + ": not a body handle (generation 0 or index out of range)"};
-  Status s = body_check(body, world);
-  if (!s.ok()) return prefixed(c, s);
+  // body_is_valid looks the handle up without building any text; only a
+  // refused handle pays for body_check's message (the same one as before).
+  if (!body_is_valid(body)) {
+    const Status s = body_check(body, world);
+    if (!s.ok()) return prefixed(c, s);
+  }
   switch (c.type) {
     case CommandType::destroy_body: return prefixed(c, destroy_body(body));
     case CommandType::apply_force:

@@ -77,21 +77,39 @@ void encode_header_payload(ByteWriter& w, const ReplayHeader& h) {
   w.bytes(h.scene_bytes.data(), n);
 }
 
-void encode_keyframe_payload(ByteWriter& w, uint64_t tick, std::span<const uint8_t> state) {
+void encode_keyframe_payload(ByteWriter& w, uint64_t tick, std::span<const uint8_t> state,
+                             std::span<const uint8_t> game_state, uint32_t version) {
   w.u64(tick);
   w.u64(xxh64(state));
   w.u32(static_cast<uint32_t>(state.size()));
   w.bytes(state.data(), state.size());
+  if (version >= 2) {
+    w.u32(static_cast<uint32_t>(game_state.size()));
+    w.bytes(game_state.data(), game_state.size());
+  }
 }
 
-void encode_tick_records(ByteWriter& w, std::span<const TickRecord> records) {
+void encode_tick_records(ByteWriter& w, std::span<const TickRecord> records, uint32_t version) {
   w.u32(static_cast<uint32_t>(records.size()));
   for (const TickRecord& t : records) {
+    const bool game = version >= 2 && t.has_game_state;
     w.u64(t.tick);
-    w.u8(t.has_hash ? 1 : 0);
+    w.u8(static_cast<uint8_t>((t.has_hash ? 1 : 0) | (game ? 2 : 0)));
     encode_commands(w, t.commands);
     if (t.has_hash) w.u64(t.hash);
+    if (game) {
+      w.u32(static_cast<uint32_t>(t.game_state.size()));
+      w.bytes(t.game_state.data(), t.game_state.size());
+    }
   }
+}
+
+// The format version a state image names (bytes 4..7, little-endian; 0 when
+// the image is too short to say).
+uint32_t image_state_version(std::span<const uint8_t> image) {
+  if (image.size() < 8) return 0;
+  return static_cast<uint32_t>(image[4]) | static_cast<uint32_t>(image[5]) << 8 | static_cast<uint32_t>(image[6]) << 16 |
+         static_cast<uint32_t>(image[7]) << 24;
 }
 
 void append_chunk(std::vector<uint8_t>* out, uint32_t type, const std::vector<uint8_t>& payload) {
@@ -114,11 +132,11 @@ std::vector<uint8_t> end_payload(uint64_t tick_count) {
 }
 
 // The 12 prelude bytes (through a fixed buffer, as end_payload).
-std::vector<uint8_t> prelude_bytes() {
+std::vector<uint8_t> prelude_bytes(uint32_t version) {
   uint8_t buf[k_replay_prelude_bytes];
   ByteWriter w(buf, sizeof buf);
   w.bytes(k_replay_magic, sizeof k_replay_magic);
-  w.u32(k_replay_format_version);
+  w.u32(version);
   return std::vector<uint8_t>(buf, buf + sizeof buf);
 }
 
@@ -223,7 +241,7 @@ Status read_file_bytes(const std::string& path, std::vector<uint8_t>* out) {
 
 namespace {
 
-Status decode_header(std::span<const uint8_t> p, size_t base, ReplayHeader* h) {
+Status decode_header(std::span<const uint8_t> p, size_t base, uint32_t version, ReplayHeader* h) {
   ByteReader r(p);
   h->engine_version = r.u32("engine version");
   const size_t fixed_at = r.offset();
@@ -233,9 +251,13 @@ Status decode_header(std::span<const uint8_t> p, size_t base, ReplayHeader* h) {
                             " (Q32.32), got 0x" + hex64(h->fixed_format).substr(10));
   const size_t state_at = r.offset();
   h->state_format_version = r.u32("state format version");
-  if (r.ok() && h->state_format_version != k_state_format_version)
+  // Version 1 writers always said 1; version 2 names the tick-0 image's
+  // version (checked against the image when it is read).
+  const uint32_t state_max = version >= 2 ? k_state_format_version_joints : k_state_format_version;
+  if (r.ok() && (h->state_format_version < k_state_format_version || h->state_format_version > state_max))
     r.fail_at(state_at, "state format version " + std::to_string(h->state_format_version) +
-                            " is not the one this build reads (" + std::to_string(k_state_format_version) + ")");
+                            " is not one this build reads in a version " + std::to_string(version) + " replay (" +
+                            std::to_string(k_state_format_version) + "…" + std::to_string(state_max) + ")");
   const size_t step_at = r.offset();
   h->time_step = r.q32("time step");
   if (r.ok() && (h->time_step.raw <= 0 || h->time_step > k_max_time_step))
@@ -263,13 +285,18 @@ Status decode_header(std::span<const uint8_t> p, size_t base, ReplayHeader* h) {
   return Status{};
 }
 
-Status decode_keyframe(std::span<const uint8_t> p, size_t base, Keyframe* k) {
+Status decode_keyframe(std::span<const uint8_t> p, size_t base, uint32_t version, Keyframe* k) {
   ByteReader r(p);
   k->tick = r.u64("keyframe tick");
   k->hash = r.u64("keyframe state hash");
   const uint32_t n = r.read_count("state image byte count", 1);
   const size_t image_at = r.offset();
   const std::span<const uint8_t> image = r.bytes(n, "state image");
+  if (version >= 2) {
+    const uint32_t g = r.read_count("game state byte count", 1);
+    const std::span<const uint8_t> game = r.bytes(g, "game state");
+    if (r.ok()) k->game_state.assign(game.begin(), game.end());
+  }
   if (r.ok() && !r.at_end()) r.fail("expected the end of the KEYF chunk, " + std::to_string(r.remaining()) + " bytes left");
   if (!r.ok()) return payload_error(r, base, "KEYF");
   const uint64_t actual = xxh64(image);
@@ -285,7 +312,8 @@ Status decode_keyframe(std::span<const uint8_t> p, size_t base, Keyframe* k) {
   return Status{};
 }
 
-Status decode_ticks(std::span<const uint8_t> p, size_t base, uint64_t first_tick, std::vector<TickRecord>* out) {
+Status decode_ticks(std::span<const uint8_t> p, size_t base, uint32_t version, uint64_t first_tick,
+                    std::vector<TickRecord>* out) {
   ByteReader r(p);
   // A record takes at least 8 (tick) + 1 (flags) + 4 (command count) bytes.
   const uint32_t n = r.read_count("tick record count", 13);
@@ -300,10 +328,18 @@ Status decode_ticks(std::span<const uint8_t> p, size_t base, uint64_t first_tick
     r.set_context("tick", static_cast<int64_t>(t.tick));
     const size_t flags_at = r.offset();
     const uint8_t flags = r.u8("flags");
-    if (r.ok() && flags > 1) r.fail_at(flags_at, "expected tick flags 0..1, got " + std::to_string(flags));
+    const uint8_t flags_max = version >= 2 ? 3 : 1;
+    if (r.ok() && flags > flags_max)
+      r.fail_at(flags_at, "expected tick flags 0.." + std::to_string(flags_max) + ", got " + std::to_string(flags));
     t.has_hash = (flags & 1) != 0;
+    t.has_game_state = (flags & 2) != 0;
     if (!decode_commands(r, &t.commands)) break;
     if (t.has_hash) t.hash = r.u64("world hash");
+    if (t.has_game_state) {
+      const uint32_t g = r.read_count("game state byte count", 1);
+      const std::span<const uint8_t> game = r.bytes(g, "game state");
+      if (r.ok()) t.game_state.assign(game.begin(), game.end());
+    }
     r.set_context(nullptr);
     if (r.ok()) out->push_back(std::move(t));
   }
@@ -331,9 +367,9 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
   }
   const uint32_t version = r.u32("format version");
   if (!r.ok()) return error("truncated header: " + r.error());
-  if (version != k_replay_format_version)
-    return error("offset 8: unknown replay format version " + std::to_string(version) + " (this build reads version " +
-                 std::to_string(k_replay_format_version) + ")");
+  if (version < k_replay_format_version_min || version > k_replay_format_version)
+    return error("offset 8: unknown replay format version " + std::to_string(version) + " (this build reads versions " +
+                 std::to_string(k_replay_format_version_min) + "…" + std::to_string(k_replay_format_version) + ")");
   out->header.format_version = version;
 
   // Chunks. The first two (HEAD, KEYF at tick 0) are the header: a cut or a
@@ -400,13 +436,17 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
       return error("offset " + std::to_string(at) + ": expected the initial KEYF chunk second, got " + name);
     if (type == k_chunk_head) {
       if (index != 0) return error("offset " + std::to_string(at) + ": a second HEAD chunk");
-      Status s = decode_header(payload, payload_at, &out->header);
+      Status s = decode_header(payload, payload_at, version, &out->header);
       if (!s.ok()) return s;
       out->header.format_version = version;
     } else if (type == k_chunk_keyframe) {
       Keyframe k;
-      Status s = decode_keyframe(payload, payload_at, &k);
+      Status s = decode_keyframe(payload, payload_at, version, &k);
       if (!s.ok()) return s;
+      if (index == 1 && version >= 2 && image_state_version(k.state) != out->header.state_format_version)
+        return error("offset " + std::to_string(payload_at) + ": KEYF chunk at tick 0: the state image is format " +
+                     std::to_string(image_state_version(k.state)) + ", the HEAD chunk says " +
+                     std::to_string(out->header.state_format_version));
       if (k.tick != last_tick)
         return error("offset " + std::to_string(payload_at) + ": KEYF chunk: expected keyframe tick " +
                      std::to_string(last_tick) + " (ticks read so far), got " + std::to_string(k.tick));
@@ -415,7 +455,7 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
                      std::to_string(k.tick));
       out->keyframes.push_back(std::move(k));
     } else if (type == k_chunk_tick) {
-      Status s = decode_ticks(payload, payload_at, last_tick + 1, &out->ticks);
+      Status s = decode_ticks(payload, payload_at, version, last_tick + 1, &out->ticks);
       if (!s.ok()) return s;
       last_tick = out->ticks.size();
     } else {  // END
@@ -444,13 +484,18 @@ Status read_replay_file(const std::string& path, Replay* out, ReplayReadInfo* in
   return s;
 }
 
-std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chunk) {
+std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chunk, uint32_t version) {
   if (ticks_per_chunk == 0) ticks_per_chunk = 1;
-  std::vector<uint8_t> out = prelude_bytes();
+  if (version < k_replay_format_version_min || version > k_replay_format_version) version = k_replay_format_version;
+  std::vector<uint8_t> out = prelude_bytes(version);
   std::vector<uint8_t> payload;
   {
+    ReplayHeader h = replay.header;
+    h.state_format_version = version >= 2 && !replay.keyframes.empty()
+                                 ? image_state_version(replay.keyframes[0].state)
+                                 : k_state_format_version;
     ByteWriter w(&payload);
-    encode_header_payload(w, replay.header);
+    encode_header_payload(w, h);
   }
   append_chunk(&out, k_chunk_head, payload);
   size_t next_key = 0;
@@ -459,7 +504,8 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
     while (next_key < replay.keyframes.size() && replay.keyframes[next_key].tick <= tick) {
       payload.clear();
       ByteWriter w(&payload);
-      encode_keyframe_payload(w, replay.keyframes[next_key].tick, replay.keyframes[next_key].state);
+      encode_keyframe_payload(w, replay.keyframes[next_key].tick, replay.keyframes[next_key].state,
+                              replay.keyframes[next_key].game_state, version);
       append_chunk(&out, k_chunk_keyframe, payload);
       ++next_key;
     }
@@ -476,7 +522,7 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
       }
     payload.clear();
     ByteWriter w(&payload);
-    encode_tick_records(w, std::span<const TickRecord>(replay.ticks.data() + t, end - t));
+    encode_tick_records(w, std::span<const TickRecord>(replay.ticks.data() + t, end - t), version);
     append_chunk(&out, k_chunk_tick, payload);
     t = end;
     keyframes_up_to(t);
@@ -527,14 +573,15 @@ Status ReplayWriter::write_chunk(uint32_t type, const std::vector<uint8_t>& payl
   return emit(bytes);
 }
 
-Status ReplayWriter::write_header(const ReplayHeader& header, std::span<const uint8_t> initial_state) {
+Status ReplayWriter::write_header(const ReplayHeader& header, std::span<const uint8_t> initial_state,
+                                  std::span<const uint8_t> initial_game_state) {
   if (header_written_) return error("replay writer: the header is already written");
   if (!memory_mode_ && file_ == nullptr) return error("replay writer: not open");
-  Status s = emit(prelude_bytes());
+  Status s = emit(prelude_bytes(k_replay_format_version));
   if (!s.ok()) return s;
   std::vector<uint8_t> payload;
   ReplayHeader h = header;
-  h.state_format_version = k_state_format_version;
+  h.state_format_version = image_state_version(initial_state);
   {
     ByteWriter w(&payload);
     encode_header_payload(w, h);
@@ -544,7 +591,7 @@ Status ReplayWriter::write_header(const ReplayHeader& header, std::span<const ui
   payload.clear();
   {
     ByteWriter w(&payload);
-    encode_keyframe_payload(w, 0, initial_state);
+    encode_keyframe_payload(w, 0, initial_state, initial_game_state, k_replay_format_version);
   }
   s = write_chunk(k_chunk_keyframe, payload);
   if (!s.ok()) return s;
@@ -568,7 +615,7 @@ Status ReplayWriter::flush() {
   if (!pending_.empty()) {
     std::vector<uint8_t> payload;
     ByteWriter w(&payload);
-    encode_tick_records(w, pending_);
+    encode_tick_records(w, pending_, k_replay_format_version);
     pending_.clear();
     Status s = write_chunk(k_chunk_tick, payload);
     if (!s.ok()) return s;
@@ -577,7 +624,8 @@ Status ReplayWriter::flush() {
   return Status{};
 }
 
-Status ReplayWriter::append_keyframe(uint64_t tick, std::span<const uint8_t> state) {
+Status ReplayWriter::append_keyframe(uint64_t tick, std::span<const uint8_t> state,
+                                     std::span<const uint8_t> game_state) {
   if (!header_written_ || finished_) return error("replay writer: append_keyframe before write_header or after finish");
   if (tick != ticks_)
     return error("replay writer: keyframe tick " + std::to_string(tick) + " is not the ticks appended (" +
@@ -586,7 +634,7 @@ Status ReplayWriter::append_keyframe(uint64_t tick, std::span<const uint8_t> sta
   if (!s.ok()) return s;
   std::vector<uint8_t> payload;
   ByteWriter w(&payload);
-  encode_keyframe_payload(w, tick, state);
+  encode_keyframe_payload(w, tick, state, game_state, k_replay_format_version);
   s = write_chunk(k_chunk_keyframe, payload);
   if (!s.ok()) return s;
   if (file_ != nullptr && std::fflush(file_) != 0) return error(path_ + ": flush failed: " + std::strerror(errno));

@@ -9,7 +9,8 @@
 //
 // FILE LAYOUT (every integer little-endian; offsets from the file start):
 //   0   8  magic "TANDREPL"
-//   8   4  u32 format version (k_replay_format_version)
+//   8   4  u32 format version (k_replay_format_version = 2 written; 1 and 2
+//          read — version 1 lacks the game states below)
 //   12 ... chunks, back to back, until the end of the file
 // Chunk:
 //   +0  4  u32 type: four ASCII bytes, first byte lowest ("HEAD", "KEYF",
@@ -25,7 +26,9 @@
 // HEAD payload:
 //   u32 engine version (k_engine_version: major << 16 | minor << 8 | patch)
 //   u32 fixed-point format id (k_fixed_format_q32_32 = 0x20200000: "Q32.32")
-//   u32 state format version (k_state_format_version of replay/state.h)
+//   u32 state format version: the version of the tick-0 keyframe's image
+//       (replay/state.h: 1 without joints, 2 with); later keyframes may use
+//       either (each image names its own). Version 1 files always say 1.
 //   i64 time step, Q32.32 raw (seconds)
 //   u32 keyframe interval in ticks (0: only the initial keyframe)
 //   u8  flags: bit 0 = the writer records a hash after each tick
@@ -36,10 +39,15 @@
 //   integrity check, not world_state_hash, which ignores the broad-phase
 //   kind), u32 image byte count N, N bytes of state image (replay/state.h).
 //   A keyframe's tick equals the number of ticks before it.
+//   Version 2 adds: u32 game state byte count G, G bytes (the game's own
+//   state after that tick, e.g. a session's save_game bytes; G = 0: none).
 // TICK payload: u32 record count, then per record: u64 tick (consecutive from
 //   1), u8 flags (bit 0: hash present), commands (u32 count + each command,
 //   replay/commands.h; user input payloads are user_input commands, in the
 //   order the game submitted them), then u64 world hash if flag bit 0.
+//   Version 2 adds flag bit 1: after the hash, u32 game state byte count G
+//   and G bytes (the game's state after the tick; verify_replay checks it
+//   when given the game's logic, VerifyOptions::game).
 // END payload: u64 tick count (must equal the ticks read).
 //
 // READING. read_replay() validates everything and fails with a message that
@@ -78,8 +86,10 @@ namespace tandem {
 
 /// The 8 magic bytes at the start of every replay file.
 inline constexpr uint8_t k_replay_magic[8] = {'T', 'A', 'N', 'D', 'R', 'E', 'P', 'L'};
-/// The version written into and required from replay files.
-inline constexpr uint32_t k_replay_format_version = 1;
+/// The version written into replay files; read: k_replay_format_version_min…this.
+inline constexpr uint32_t k_replay_format_version = 2;
+/// The oldest version read (1: no game states).
+inline constexpr uint32_t k_replay_format_version_min = 1;
 /// The engine version written into replays (0.1.0).
 inline constexpr uint32_t k_engine_version = (0u << 16) | (1u << 8) | 0u;
 /// Fixed-point format id: integer bits << 24 | fraction bits << 16 (Q32.32).
@@ -104,7 +114,7 @@ struct ReplayHeader {
   uint32_t format_version = k_replay_format_version;
   uint32_t engine_version = k_engine_version;
   uint32_t fixed_format = k_fixed_format_q32_32;
-  uint32_t state_format_version = 0;  ///< filled by the writer from replay/state.h
+  uint32_t state_format_version = 0;  ///< the tick-0 keyframe image's version (filled by the writer)
   Q32 time_step = Q32::from_ratio(1, 60);  ///< seconds per tick
   uint32_t keyframe_interval = 600;   ///< ticks between keyframes; 0: only the initial one
   bool tick_hashes = true;            ///< a world hash is recorded after each tick
@@ -120,6 +130,8 @@ struct TickRecord {
   std::vector<Command> commands;  ///< in submission order (user_input commands carry game payloads)
   bool has_hash = false;
   uint64_t hash = 0;              ///< world_state_hash after the step
+  bool has_game_state = false;    ///< format 2: the game's own state after the tick is recorded
+  std::vector<uint8_t> game_state;
 };
 
 /// A world snapshot after `tick` ticks.
@@ -127,6 +139,7 @@ struct Keyframe {
   uint64_t tick = 0;
   uint64_t hash = 0;           ///< XXH3-64 of the bytes of `state` (not world_state_hash)
   std::vector<uint8_t> state;  ///< state image (replay/state.h)
+  std::vector<uint8_t> game_state;  ///< format 2: the game's own state after `tick` (empty: none)
 };
 
 /// Turns a game's opaque payload (recorded at `tick`) into engine commands;
@@ -180,8 +193,11 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
 /// Reads a whole file and read_replay()s it; errors start with the path.
 Status read_replay_file(const std::string& path, Replay* out, ReplayReadInfo* info = nullptr);
 /// Encodes a whole replay as a file image (HEAD, keyframes and ticks in tick
-/// order, END).
-std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chunk = 1);
+/// order, END) in format `format_version` (1 or 2; version 1 cannot hold game
+/// states, which are left out, and says state format 1 as version-1 writers
+/// did). Other versions are written as k_replay_format_version.
+std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chunk = 1,
+                                   uint32_t format_version = k_replay_format_version);
 
 /// Reads a file into memory; errors name the path.
 Status read_file_bytes(const std::string& path, std::vector<uint8_t>* out);
@@ -205,13 +221,17 @@ class ReplayWriter {
   Status open_file(const std::string& path, const ReplayWriterOptions& options = {});
   /// Writes into memory (memory()).
   void open_memory(const ReplayWriterOptions& options = {});
-  /// Writes the prelude, HEAD and the tick-0 keyframe. Call once, first.
-  Status write_header(const ReplayHeader& header, std::span<const uint8_t> initial_state);
+  /// Writes the prelude, HEAD and the tick-0 keyframe (with the game's
+  /// initial state, may be empty). The header's state format version is
+  /// taken from the image. Call once, first.
+  Status write_header(const ReplayHeader& header, std::span<const uint8_t> initial_state,
+                      std::span<const uint8_t> initial_game_state = {});
   /// Queues a tick record (its tick must follow the last one); writes a TICK
   /// chunk and flushes when flush_every records are pending.
   Status append_tick(TickRecord record);
-  /// Writes pending ticks, then a keyframe at `tick` (= ticks appended).
-  Status append_keyframe(uint64_t tick, std::span<const uint8_t> state);
+  /// Writes pending ticks, then a keyframe at `tick` (= ticks appended), with
+  /// the game's own state then (may be empty).
+  Status append_keyframe(uint64_t tick, std::span<const uint8_t> state, std::span<const uint8_t> game_state = {});
   /// Writes pending ticks as one chunk and flushes the file.
   Status flush();
   /// Flushes, writes END and closes the file. Later appends are refused.

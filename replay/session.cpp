@@ -12,7 +12,11 @@
 // Redundancy: each input packet repeats the sender's inputs from the oldest
 // tick the receiver has not acknowledged (≤ 32 per packet), and the confirmed
 // hashes likewise, so any loss pattern is repaired by the next packets that
-// get through, oldest first.
+// get through, oldest first. The sender's own inputs are kept for
+// input_history_ticks (default 3600), beyond the ring, so an endpoint far
+// behind (a spectator cut off for seconds) still gets every input; one
+// further behind than that is dropped (a spectator) or stops the session (a
+// player, which the bounds above rule out).
 #include "replay/session.h"
 
 #include <algorithm>
@@ -31,6 +35,7 @@ namespace {
 constexpr uint64_t k_accept_ahead = 192;  // < k_session_ring_ticks − 32
 constexpr uint32_t k_sync_samples = 16;
 constexpr int64_t k_sync_min_frames = 2;
+constexpr uint32_t k_spectator_catch_up = 4;  // most ticks a spectator steps in one frame
 
 Status bad(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
 
@@ -105,6 +110,9 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
   if (c.history_ticks < c.prediction_window + 2 || c.history_ticks > k_session_ring_ticks) {
     return bad(range_text("history_ticks", c.prediction_window + 2, k_session_ring_ticks, c.history_ticks));
   }
+  if (c.input_history_ticks < k_session_ring_ticks || c.input_history_ticks > (1u << 20)) {
+    return bad(range_text("input_history_ticks", k_session_ring_ticks, 1u << 20, c.input_history_ticks));
+  }
   if (c.time_step.raw <= 0) return bad("session config time_step: expected > 0, got raw " + std::to_string(c.time_step.raw));
   if (!callbacks.send) return bad("session callbacks: send is required");
   if (!callbacks.make_commands) return bad("session callbacks: make_commands is required");
@@ -122,6 +130,7 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
   used_.assign(players * R * c.input_bytes, 0);
   used_tick_.assign(players * R, UINT64_MAX);
   contiguous_.assign(players, c.input_delay);
+  local_history_.assign(c.local_endpoint < c.player_count ? size_t{c.input_history_ticks} * c.input_bytes : 0, 0);
   hash_.assign(R, 0);
   world_hash_.assign(R, 0);
   hash_tick_.assign(R, UINT64_MAX);
@@ -172,7 +181,13 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
     header.time_step = c.time_step;
     header.keyframe_interval = c.keyframe_interval;
     header.tick_hashes = true;
-    s = writer_.write_header(header, snap_world_[0]);
+    if (!c.replay_scene.empty()) {
+      header.has_scene_bytes = true;
+      header.scene_bytes = c.replay_scene;
+      header.has_scene_hash = true;
+      header.scene_hash = XXH3_64bits(c.replay_scene.data(), c.replay_scene.size());
+    }
+    s = writer_.write_header(header, snap_world_[0], snap_game_[0]);
     if (!s.ok()) return s;
   }
   stop_ = {};
@@ -193,6 +208,10 @@ bool Session::input_known(uint32_t player, uint64_t tick) const {
 }
 void Session::store_input(uint32_t player, uint64_t tick, const uint8_t* bytes) {
   std::memcpy(input_at(player, tick), bytes, config_.input_bytes);
+  if (player == config_.local_endpoint) {
+    std::memcpy(local_history_.data() + static_cast<size_t>(tick % config_.input_history_ticks) * config_.input_bytes,
+                bytes, config_.input_bytes);
+  }
   input_tick_[size_t{player} * k_session_ring_ticks + ring(tick)] = tick;
   uint64_t& c = contiguous_[player];
   while (input_known(player, c + 1)) ++c;
@@ -296,9 +315,13 @@ void Session::confirm() {
       for (const Command& c : snap_commands_[h]) rec.commands.push_back(c);
       rec.has_hash = true;
       rec.hash = world_hash_[ring(t)];
+      if (callbacks_.save_game) {
+        rec.has_game_state = true;
+        rec.game_state = snap_game_[h];
+      }
       Status s = writer_.append_tick(std::move(rec));
       if (s.ok() && config_.keyframe_interval != 0 && t % config_.keyframe_interval == 0) {
-        s = writer_.append_keyframe(t, snap_world_[h]);
+        s = writer_.append_keyframe(t, snap_world_[h], snap_game_[h]);
       }
       if (!s.ok()) {
         stop(SessionState::error, "recording tick " + std::to_string(t) + ": " + s.message);
@@ -403,6 +426,16 @@ AdvanceResult Session::advance_frame(std::span<const uint8_t> local_input) {
     current_ = next;
     confirm();
     check_hashes();
+    // A spectator behind (inputs known beyond the next tick) catches up:
+    // up to k_spectator_catch_up ticks per frame.
+    for (uint32_t extra = 1; is_spectator() && extra < k_spectator_catch_up && stop_.state == SessionState::running &&
+                             current_ + 1 <= all_known_through();
+         ++extra) {
+      if (!simulate(current_ + 1)) return AdvanceResult::stopped;
+      ++current_;
+      confirm();
+      check_hashes();
+    }
   } else {
     ++stats_.stalls;
   }
@@ -471,15 +504,30 @@ void Session::send_packets() {
     p.first_input_tick = 0;
     if (!is_spectator()) {
       // Oldest unacknowledged first, so a receiver behind by more than one
-      // packet's worth still fills its gap (the live range fits the ring:
-      // see the file comment).
+      // packet's worth still fills its gap, from the local input history:
+      // players stay within the ring of each other (file comment), but a
+      // spectator that heard nothing for seconds may be far behind.
       const uint64_t first = std::max<uint64_t>(input_ack_from_[q] + 1, config_.input_delay + 1);
+      if (first <= last_local_tick_ && last_local_tick_ - first >= config_.input_history_ticks) {
+        const std::string why = "endpoint " + std::to_string(q) + " needs our inputs from tick " +
+                                std::to_string(first) + ", older than the " +
+                                std::to_string(config_.input_history_ticks) + " ticks kept (input_history_ticks)";
+        if (q < config_.player_count) {
+          stop(SessionState::error, why);
+          return;
+        }
+        gone_[q] = 1;  // a spectator: no longer sent to
+        ++stats_.spectators_dropped;
+        stats_.last_rejection = why;
+        continue;
+      }
       if (first <= last_local_tick_) {
         p.first_input_tick = static_cast<uint32_t>(first);
         p.input_count = static_cast<uint8_t>(std::min<uint64_t>(last_local_tick_ - first + 1, k_packet_max_inputs));
         for (uint32_t i = 0; i < p.input_count; ++i) {
-          std::memcpy(p.inputs.data() + size_t{i} * config_.input_bytes, input_at(config_.local_endpoint, first + i),
-                      config_.input_bytes);
+          const size_t slot = static_cast<size_t>((first + i) % config_.input_history_ticks);
+          std::memcpy(p.inputs.data() + size_t{i} * config_.input_bytes,
+                      local_history_.data() + slot * config_.input_bytes, config_.input_bytes);
         }
       }
     }
@@ -578,6 +626,10 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
       const uint64_t t = uint64_t{p.first_input_tick} + i;
       const uint8_t* bytes = p.input(i).data();
       if (t > confirmed_ + k_accept_ahead) {
+        // A sender starts at our oldest missing input, so only a first tick
+        // past the window is wrong; later ones are kept for the next packets
+        // (a spectator far behind gets 32 at a time but may hold fewer).
+        if (i != 0) break;
         reject("player " + std::to_string(from) + " input for tick " + std::to_string(t) + ", more than " +
                std::to_string(k_accept_ahead) + " ahead of confirmed tick " + std::to_string(confirmed_));
         return;

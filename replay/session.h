@@ -24,7 +24,10 @@
 //     rather than run more than prediction_window ticks past the last tick
 //     whose inputs are all known.
 //   Spectators (local_endpoint ≥ player_count) never predict: they step when
-//   all players' inputs for a tick are in (players send them their inputs).
+//   all players' inputs for a tick are in (players send them their inputs),
+//   up to 4 ticks in one frame while they are behind, so one that was cut off
+//   for a while catches up (players keep input_history_ticks of their inputs
+//   to resend it).
 //
 // TIME SYNC (as GGPO's frame advantage): every input packet carries the
 // sender's tick and its advantage over the receiver (its tick minus the
@@ -46,9 +49,12 @@
 // RECORDING. With record_replay set the session records every confirmed
 // tick: a user_input command holding all players' inputs (player order,
 // input_bytes each), then the engine commands the callback made, and the
-// world hash. `tandem verify` re-runs it without the game (user_input
-// commands are ignored by apply_command). Keyframes every keyframe_interval
-// confirmed ticks. Game state is not in the replay.
+// world hash, and the game state after the tick (save_game's bytes, replay
+// format 2), also at every keyframe. `tandem verify` re-runs it without the
+// game (user_input commands are ignored by apply_command) and checks the game
+// states when it knows the game (VerifyOptions::game; the CLI knows the
+// bundled arena by the replay's scene bytes, SessionConfig::replay_scene).
+// Keyframes every keyframe_interval confirmed ticks.
 //
 // ALLOCATION. Rings (inputs, hashes, snapshots) are sized at start(); after
 // the snapshot buffers have grown to the world's size and the command vector
@@ -56,9 +62,12 @@
 // tick without recording (with recording, each confirmed tick is appended to
 // the in-memory replay). Measured with a counting operator new (2 peers,
 // arena, 300 frames): the allocations that remain come from applying the
-// engine commands (body_apply_force and its handle check build strings even
-// on success, physics/), in proportion to the ticks simulated, re-simulated
-// ones included.
+// engine commands, in proportion to the ticks simulated, re-simulated ones
+// included. apply_command itself checks the handle without building text
+// (2026-11-25); what remains is inside physics/: body_apply_force builds its
+// handle description and one message per limit check even on success (13
+// allocations per call measured with a counting operator new;
+// apply_linear_impulse 7, set_linear_velocity 4).
 //
 // ORDER. Everything the simulation sees is ordered by data: inputs by
 // (tick, player), commands in the order the callback produced them. Packet
@@ -104,8 +113,11 @@ struct SessionConfig {
   Q32 time_step = Q32::from_ratio(1, 60);  ///< seconds per tick (> 0)
   uint32_t history_ticks = 64;      ///< snapshots kept (for rollbacks and desync images), ≥ prediction_window + 2, ≤ 256
   uint32_t disconnect_timeout_frames = 300;  ///< a player silent this many frames has left (0: never)
+  uint32_t input_history_ticks = 3600; ///< local inputs kept for resending to an endpoint that fell behind (a
+                                       ///< spectator that lost every packet for a while), 256…1 << 20 (60 s at 60 Hz)
   bool record_replay = false;       ///< record confirmed ticks into an in-memory replay
   uint32_t keyframe_interval = 600; ///< replay keyframes every this many ticks (0: only tick 0)
+  std::vector<uint8_t> replay_scene; ///< embedded in the replay header as its scene bytes (empty: none), e.g. what game and settings
 };
 
 /// One tick's inputs of every player, player order (a view; valid during the call).
@@ -168,6 +180,7 @@ struct SessionStats {
   uint64_t commands_refused = 0;    ///< engine commands the world refused (replayed identically)
   uint64_t hashes_compared = 0;     ///< remote confirmed hashes checked
   uint64_t hashes_skipped = 0;      ///< remote hashes never received (the sender's ring had moved on)
+  uint64_t spectators_dropped = 0;  ///< spectators no longer sent to: behind by more than input_history_ticks
   std::string last_rejection;       ///< why the last packet was refused
 };
 
@@ -302,6 +315,7 @@ class Session {
   std::vector<uint8_t> used_;
   std::vector<uint64_t> used_tick_;
   std::vector<uint64_t> contiguous_;  // per player: every input ≤ this is known
+  std::vector<uint8_t> local_history_;  // the local player's inputs, input_history_ticks slots (tick % slots)
 
   // Per ring: local confirmed hash (+ world-only hash for the replay).
   std::vector<uint64_t> hash_;

@@ -85,7 +85,12 @@ Status decode_session_packet(const uint8_t* data, size_t size, const SessionPack
       const size_t bytes_at = r.offset();
       out->input_bytes = r.u8("input bytes");
       if (!r.ok()) break;
-      if (out->input_count != 0 || out->input_bytes != 0) {
+      if (out->input_count == 0 && out->input_bytes != 0) {
+        // One encoding per packet: without inputs the size byte is 0 (as written).
+        r.fail_at(bytes_at, "expected input bytes 0 with an input count of 0, got " + std::to_string(out->input_bytes));
+        break;
+      }
+      if (out->input_count != 0) {
         const bool size_ok = out->input_bytes >= 1 && out->input_bytes <= k_session_max_input_bytes &&
                              (limits.input_bytes == 0 || out->input_bytes == limits.input_bytes);
         if (!size_ok) {

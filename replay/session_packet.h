@@ -26,7 +26,8 @@
 //                   count × u64 body_state_hash (0 for a dead slot)
 //   Nothing may follow the last field.
 // A count of 0 leaves out its first-tick field's meaning (the field is still
-// present and must be 0). Tick fields of inputs and hashes must be ≥ 1, and
+// present and must be 0; so must the input bytes field when the input count
+// is 0), so every packet has exactly one encoding. Tick fields of inputs and hashes must be ≥ 1, and
 // first + count − 1 must not overflow u32.
 //
 // DECODING never allocates: a SessionPacket holds fixed-size arrays for the

@@ -80,6 +80,18 @@ std::string hash_text(uint64_t hash) {
 
 // --- verify -------------------------------------------------------------------
 
+namespace {
+
+// The index of the first differing byte (the shorter size when one is a prefix).
+size_t first_difference(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  const size_t n = std::min(a.size(), b.size());
+  for (size_t i = 0; i < n; ++i)
+    if (a[i] != b[i]) return i;
+  return n;
+}
+
+}  // namespace
+
 VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   VerifyReport rep;
   if (replay.keyframes.empty()) {
@@ -120,6 +132,8 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   const uint64_t n = std::min<uint64_t>(replay.tick_count(), options.max_ticks);
   size_t next_key = 1;
   uint64_t hash_after_mismatch = 0;
+  // The game state, recomputed tick by tick from the tick-0 keyframe's.
+  std::vector<uint8_t> game = k0.game_state, game_next;
   for (uint64_t t = 1; t <= n; ++t) {
     const TickRecord& rec = replay.tick_record(t);
     Status s = run_tick(world.id, rec, dt, options.payloads, &rep.refused_commands, &rep.skipped_payloads);
@@ -128,6 +142,16 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
       return rep;
     }
     rep.ticks_run = t;
+    if (rec.has_game_state) ++rep.game_states_recorded;
+    if (options.game) {
+      game_next.clear();
+      s = options.game(t, world.id, game, &game_next);
+      if (!s.ok()) {
+        rep.error = fail("verify: tick " + std::to_string(t) + ": game logic: " + s.message);
+        return rep;
+      }
+      game.swap(game_next);
+    }
     while (next_key < replay.keyframes.size() && replay.keyframes[next_key].tick < t) ++next_key;
     const Keyframe* key =
         next_key < replay.keyframes.size() && replay.keyframes[next_key].tick == t ? &replay.keyframes[next_key] : nullptr;
@@ -165,9 +189,23 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
       }
       ++rep.hashes_checked;
     }
+    if (options.game && rec.has_game_state) {
+      if (game != rec.game_state) {
+        rep.mismatch = true;
+        rep.game_state_mismatch = true;
+        rep.mismatch_tick = t;
+        rep.expected_hash = XXH3_64bits(rec.game_state.data(), rec.game_state.size());
+        rep.actual_hash = XXH3_64bits(game.data(), game.size());
+        rep.note = "the world matches; the game state after tick " + std::to_string(t) + " (" +
+                   std::to_string(rec.game_state.size()) + " bytes recorded, " + std::to_string(game.size()) +
+                   " recomputed) differs from the first byte " + std::to_string(first_difference(rec.game_state, game));
+        break;
+      }
+      ++rep.game_states_checked;
+    }
     report_progress(options.progress, t, n);
   }
-  if (!rep.mismatch || !options.locate) return rep;
+  if (!rep.mismatch || !options.locate || rep.game_state_mismatch) return rep;
 
   const uint64_t t = rep.mismatch_tick;
   // Does this machine reproduce its own run from the previous keyframe?
@@ -234,6 +272,11 @@ std::string format_verify_report(const VerifyReport& r) {
   }
   s += "ticks re-simulated: " + std::to_string(r.ticks_run) + ", tick hashes checked: " +
        std::to_string(r.hashes_checked) + ", keyframes checked: " + std::to_string(r.keyframes_checked) + "\n";
+  if (r.game_states_checked != 0 || r.game_state_mismatch)
+    s += "game states checked: " + std::to_string(r.game_states_checked) + "\n";
+  else if (r.game_states_recorded != 0)
+    s += "game states recorded: " + std::to_string(r.game_states_recorded) +
+         " (not checked: the game's logic is not known here)\n";
   if (r.refused_commands != 0)
     s += "commands refused (as when recorded): " + std::to_string(r.refused_commands) + "\n";
   if (r.skipped_payloads != 0)

@@ -45,9 +45,17 @@ namespace tandem {
 /// Called with (ticks done, ticks in total) while a long check runs.
 using ProgressCallback = std::function<void(uint64_t done, uint64_t total)>;
 
+/// The game's own logic after a tick's step, for checking recorded game
+/// states (replay format 2): from the game state before `tick` and the world
+/// after its step, the game state after it (*after is replaced). A pure
+/// function of its arguments, as a session's after_step + save_game are.
+using GameStep = std::function<Status(uint64_t tick, WorldId world, std::span<const uint8_t> before,
+                                      std::vector<uint8_t>* after)>;
+
 /// Options of verify_replay.
 struct VerifyOptions {
   PayloadHandler payloads;           ///< turns user payloads into commands; unset: payloads skipped
+  GameStep game;                     ///< checks recorded game states (from the tick-0 keyframe's); unset: not checked
   uint64_t max_ticks = UINT64_MAX;   ///< check at most this many ticks
   bool locate = true;                ///< on a mismatch, find the body and field (costs a re-run)
   ProgressCallback progress;         ///< optional
@@ -59,11 +67,14 @@ struct VerifyReport {
   uint64_t ticks_run = 0;        ///< ticks re-simulated
   uint64_t hashes_checked = 0;   ///< recorded tick hashes compared (until the first mismatch)
   uint64_t keyframes_checked = 0;
+  uint64_t game_states_recorded = 0;  ///< ticks (run) whose game state the file holds
+  uint64_t game_states_checked = 0;   ///< of those, compared with VerifyOptions::game's (until the first mismatch)
+  bool game_state_mismatch = false;   ///< the mismatch is in the game state (the world matched)
   uint32_t refused_commands = 0; ///< commands refused while re-running (also refused when recorded)
   uint32_t skipped_payloads = 0; ///< user payloads skipped (no VerifyOptions::payloads handler)
   bool mismatch = false;
   uint64_t mismatch_tick = 0;    ///< first tick whose recomputed state differs from the recording
-  uint64_t expected_hash = 0;    ///< recorded hash at mismatch_tick (or the keyframe's)
+  uint64_t expected_hash = 0;    ///< recorded hash at mismatch_tick (or the keyframe's; XXH3-64 of the game state bytes for a game state mismatch)
   uint64_t actual_hash = 0;      ///< recomputed hash
   bool located = false;          ///< `difference` is meaningful
   uint64_t located_tick = 0;     ///< the tick where `difference` was taken (≥ mismatch_tick)

@@ -9,6 +9,7 @@
 #   commands     decode_commands, round trip, applied to a world, 3 steps
 #   scene        load_scene_text (≤ 300 bodies), build_world, 5 steps
 #   decimal      parse_q32 / parse_q16, exact round trip through to_string
+#   session_packet  decode_session_packet, round trip, then a live session receives it
 #
 # Usage: scripts/fuzz.sh [--seconds N] [--out DIR] [--no-build] [--make-seeds] [TARGET...]
 #   --seconds N   time per target (default 60); hours: --seconds 3600 or more
@@ -37,7 +38,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 2
 
-all_targets=(replay_file snapshot commands scene decimal)
+all_targets=(replay_file snapshot commands scene decimal session_packet)
 seconds=60
 out=build/clang-fuzz/fuzz-out
 build=1
@@ -49,7 +50,7 @@ while [ $# -gt 0 ]; do
     --out) out=${2:-}; shift 2 ;;
     --no-build) build=0; shift ;;
     --make-seeds) make_seeds=1; shift ;;
-    -h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -76,7 +77,7 @@ fi
 if [ $make_seeds -eq 1 ]; then
   corpus=tests/fuzz/corpus
   rm -rf "$corpus"
-  mkdir -p "$corpus"/{replay_file,snapshot,commands,scene,decimal}
+  mkdir -p "$corpus"/{replay_file,snapshot,commands,scene,decimal,session_packet}
   "$dir"/tests/fuzz/fuzz_make_seeds "$corpus" || exit 2
   cp scenes/*.json "$corpus"/scene/
   cp tests/tools/data/*.json "$corpus"/scene/

@@ -13,6 +13,8 @@
 #include "replay/bytes.h"
 #include "replay/commands.h"
 #include "replay/replay_file.h"
+#include "replay/session.h"
+#include "replay/session_packet.h"
 #include "replay/state.h"
 #include "scene/scene.h"
 
@@ -205,13 +207,64 @@ Outcome run_decimal(std::span<const uint8_t> data) {
   return Outcome{true, {}};
 }
 
+Outcome run_session_packet(std::span<const uint8_t> data) {
+  setup_faults();
+  SessionPacket packet;
+  const Status st = decode_session_packet(data.data(), data.size(), SessionPacketLimits{}, &packet);
+  if (st.ok()) {
+    // Round trip: an accepted packet re-encodes to exactly its bytes.
+    std::array<uint8_t, k_packet_max_bytes> again{};
+    const size_t n = encode_session_packet(packet, again.data(), again.size());
+    if (n != data.size() || !std::equal(data.begin(), data.end(), again.begin()))
+      broken("decode_session_packet then encode_session_packet changed the bytes");
+  } else if (st.message.empty()) {
+    broken("a refusal without a message");
+  }
+  // The session that would receive it: endpoint 0 of 2, a floor and a box.
+  Result<WorldId> w = create_world(default_world_def());
+  if (!w.ok()) broken("create_world failed");
+  const BodyId floor = create_body(w.value, default_body_def()).value;
+  Polygon box{};
+  (void)make_box(Q32::from_int(20), Q32::from_int(1), &box);
+  (void)create_polygon_shape(floor, default_shape_def(), box);
+  BodyDef d = default_body_def();
+  d.type = BodyType::dynamic_body;
+  d.position = Vec2{Q32{}, Q32::from_int(3)};
+  const BodyId b = create_body(w.value, d).value;
+  (void)make_box(Q32::from_ratio(1, 2), Q32::from_ratio(1, 2), &box);
+  (void)create_polygon_shape(b, default_shape_def(), box);
+  SessionConfig config;
+  config.player_count = 2;
+  config.local_endpoint = 0;
+  config.input_bytes = 4;
+  config.history_ticks = 16;
+  SessionCallbacks callbacks;
+  callbacks.send = [](uint32_t, std::span<const uint8_t>) {};
+  callbacks.make_commands = [b](uint64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
+    const Q32 push = Q32::from_int(static_cast<int8_t>(in.input(1)[0]));
+    out->push_back(make_apply_force_to_center(body_ref(b), Vec2{push, Q32{}}));
+    return Status{};
+  };
+  Session session;
+  if (!session.start(w.value, config, std::move(callbacks)).ok()) broken("Session::start refused a valid config");
+  const uint8_t input[4] = {1, 2, 3, 4};
+  for (int frame = 0; frame < 3; ++frame) {
+    session.receive(1, data);
+    (void)session.advance_frame(input);
+  }
+  if (!st.ok() && session.stats().packets_rejected == 0) broken("the session accepted a packet the decoder refuses");
+  (void)destroy_world(w.value);
+  return st.ok() ? Outcome{true, {}} : refused(st.message);
+}
+
 std::span<const Target> all_targets() {
-  static const std::array<Target, 5> targets = {{
+  static const std::array<Target, 6> targets = {{
       {"replay_file", run_replay_file},
       {"snapshot", run_snapshot},
       {"commands", run_commands},
       {"scene", run_scene},
       {"decimal", run_decimal},
+      {"session_packet", run_session_packet},
   }};
   return targets;
 }

@@ -50,6 +50,12 @@ Outcome run_scene(std::span<const uint8_t> data);
 /// parse_q32 and parse_q16; an accepted value prints (to_string) as text that
 /// parses back to the same raw value; a refusal's offset lies within the text.
 Outcome run_decimal(std::span<const uint8_t> data);
+/// decode_session_packet (any sender, any input size); when accepted, the
+/// packet re-encodes to the same bytes. Then the bytes as given are handed to
+/// a started 2-player rollback session (4-byte inputs, a small world) as if
+/// from endpoint 1, which advances 3 frames: a refusal is counted, never a
+/// crash. The outcome is the decoder's.
+Outcome run_session_packet(std::span<const uint8_t> data);
 
 /// All targets, in a fixed order.
 std::span<const Target> all_targets();

@@ -34,6 +34,7 @@ class SimNet {
   /// Sends a packet at frame `now`.
   void send(uint32_t from, uint32_t to, std::span<const uint8_t> bytes, uint64_t now) {
     if (blocked_from_ != UINT32_MAX && from == blocked_from_) return;
+    if (blocked_to_ != UINT32_MAX && to == blocked_to_) return;
     if (draw(1000) < c_.loss_per_mille) return;
     const int copies = draw(1000) < c_.duplicate_per_mille ? 2 : 1;
     for (int i = 0; i < copies; ++i) {
@@ -52,6 +53,8 @@ class SimNet {
   }
   /// Drops everything `from` sends from now on (UINT32_MAX: none).
   void block_from(uint32_t from) { blocked_from_ = from; }
+  /// Drops everything sent to `to` from now on (UINT32_MAX: none).
+  void block_to(uint32_t to) { blocked_to_ = to; }
 
  private:
   struct Msg {
@@ -64,6 +67,7 @@ class SimNet {
   uint64_t rng_;
   uint64_t order_ = 0;
   uint32_t blocked_from_ = UINT32_MAX;
+  uint32_t blocked_to_ = UINT32_MAX;
   std::vector<Msg> queue_;
 };
 
@@ -81,6 +85,8 @@ struct RigOptions {
   uint64_t perturb_tick = 0;      ///< nudge player 0's disc by one raw unit on peer perturb_peer after this tick
   uint32_t perturb_peer = 1;
   uint64_t silence_peer_at = 0;   ///< from this frame on, peer perturb_peer stops (no frames, no packets)
+  uint32_t cut_off_peer = UINT32_MAX;  ///< every packet to this peer is lost in frames [cut_off_from, cut_off_until)
+  uint64_t cut_off_from = 0, cut_off_until = 0;
 };
 
 /// One peer.
@@ -157,6 +163,8 @@ struct Rig {
     while (frame < options.frame_limit) {
       ++frame;
       if (options.silence_peer_at != 0 && frame == options.silence_peer_at) peers[options.perturb_peer]->silent = true;
+      if (options.cut_off_peer != UINT32_MAX && frame == options.cut_off_from) net.block_to(options.cut_off_peer);
+      if (options.cut_off_peer != UINT32_MAX && frame == options.cut_off_until) net.block_to(UINT32_MAX);
       for (uint32_t e = 0; e < peers.size(); ++e) {
         frame_of(e);
         if (e == 0 && options.fast_peer_every != 0 && frame % options.fast_peer_every == 0) frame_of(0);

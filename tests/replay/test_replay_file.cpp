@@ -233,9 +233,11 @@ TEST_CASE("wrong magic, unknown version and trailing data are refused", "[replay
   }
   SECTION("unknown version") {
     std::vector<uint8_t> bad = bytes;
-    bad[8] = 2;
+    bad[8] = 3;
     Replay r;
-    CHECK(read_replay(bad, &r).message == "offset 8: unknown replay format version 2 (this build reads version 1)");
+    CHECK(read_replay(bad, &r).message == "offset 8: unknown replay format version 3 (this build reads versions 1…2)");
+    bad[8] = 0;
+    CHECK(read_replay(bad, &r).message == "offset 8: unknown replay format version 0 (this build reads versions 1…2)");
   }
   SECTION("data after END") {
     std::vector<uint8_t> bad = bytes;

@@ -124,6 +124,46 @@ TEST_CASE("session: spectators follow the confirmed inputs", "[replay][session]"
   }
 }
 
+TEST_CASE("session: a spectator cut off for 8 s (480 ticks, past the 256-tick ring) is resent every input and catches up",
+          "[replay][session]") {
+  RigOptions o = lossy(2, SessionMode::rollback, 21);
+  o.config.spectator_count = 1;
+  o.config.disconnect_timeout_frames = 0;  // the spectator hears nothing while cut off
+  o.ticks = 900;
+  o.frame_limit = 4000;
+  o.cut_off_peer = 2;
+  o.cut_off_from = 100;
+  o.cut_off_until = 580;
+  Rig rig(o);
+  rig.run();
+  check_against_reference(rig, reference_hashes(o));
+  const Session& spectator = rig.peers[2]->session;
+  INFO(spectator.stats().last_rejection);
+  CHECK(spectator.stats().packets_rejected == 0);
+  for (size_t e = 0; e < 2; ++e) {
+    const Session& player = rig.peers[e]->session;
+    CHECK(player.stats().spectators_dropped == 0);
+    // It caught up (4 ticks a frame while behind): within the latency of the players.
+    CHECK(player.current_tick() < spectator.current_tick() + 30);
+  }
+  // With an input history smaller than the gap the spectator is dropped, not fed
+  // stale inputs: the players go on, the spectator stays behind.
+  RigOptions small = o;
+  small.config.input_history_ticks = 256;
+  small.ticks = 700;
+  Rig cut(small);
+  cut.run();
+  for (size_t e = 0; e < 2; ++e) {
+    const Session& player = cut.peers[e]->session;
+    INFO("player " << e << ": " << player.stats().last_rejection);
+    CHECK(player.state() == SessionState::running);
+    CHECK(player.stats().spectators_dropped == 1);
+    CHECK(player.stats().last_rejection.find("older than the 256 ticks kept (input_history_ticks)") != std::string::npos);
+  }
+  CHECK(cut.peers[2]->session.stats().packets_rejected == 0);
+  CHECK(cut.peers[2]->session.confirmed_tick() < 200);
+}
+
 TEST_CASE("session: rollback stalls at the prediction window instead of running on", "[replay][session]") {
   RigOptions o = lossy(2, SessionMode::rollback, 3);
   o.net.loss_per_mille = 0;

@@ -142,6 +142,17 @@ TEST_CASE("session packet decoder names the offset and field of every refusal", 
     for (size_t i = 33; i < 37; ++i) b[i] = 0;
     CHECK(refusal(b, limits) == "offset 33: expected first input tick 1…4294967293, got 0");
   }
+  // No inputs but a non-zero input size: a second encoding of the same packet (found by the fuzzer).
+  {
+    SessionPacket p = sample_input();
+    p.input_count = 0;
+    p.first_input_tick = 0;
+    std::vector<uint8_t> b;
+    encode_session_packet(p, &b);
+    REQUIRE(refusal(b, limits) == "ok");
+    b[38] = 2;
+    CHECK(refusal(b, limits) == "offset 38: expected input bytes 0 with an input count of 0, got 2");
+  }
   // Trailing bytes.
   {
     std::vector<uint8_t> b = good;

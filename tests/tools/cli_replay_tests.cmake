@@ -90,6 +90,42 @@ tandem_replay_cli_test(verify-not-a-replay 2 "verify|scenes/stack.json"
   ERR "scenes/stack.json: offset 0: expected the replay magic \"TANDREPL\", got bytes [0-9a-f]+ \\(not a Tandem replay\\)")
 tandem_replay_cli_test(verify-missing 2 "verify|${out}/none.tnr" ERR "none.tnr: cannot open")
 
+# --- many files: --jobs, one JSON line per file, the exit code of the worst verdict ----------
+tandem_replay_cli_test(verify-many 0 "verify|--jobs|2|${out}/stack.tnr|${out}/impulses.tnr|${out}/bridge.tnr"
+  OUT "^OK        [^\n]*stack.tnr: 60 ticks, 60 hashes, 4 keyframes\nOK        [^\n]*impulses.tnr: 40 ticks, 0 hashes, 1 keyframes\nOK        [^\n]*bridge.tnr: 60 ticks, 60 hashes, 4 keyframes\nverified 3 files with 2 jobs: 3 ok, 0 mismatched, 0 not verified \\(bad file\\)\n$"
+  REQUIRES "replay_stack;replay_impulses;replay_bridge")
+tandem_replay_cli_test(verify-many-json 2 "verify|-j|0|--json|${out}/stack.tnr|${out}/flipped.tnr|${out}/none.tnr|${out}/impulses.tnr"
+  OUT "^\\{\"replay\":\"[^\n]*stack.tnr\",\"result\":\"ok\",[^\n]*\"ticks_run\":60,[^\n]*\\}\n\\{\"replay\":\"[^\n]*flipped.tnr\",\"result\":\"error\",\"error\":\"[^\n]*flipped.tnr: offset 12: HEAD chunk[^\n]*\\}\n\\{\"replay\":\"[^\n]*none.tnr\",\"result\":\"error\",\"error\":\"[^\n]*none.tnr: cannot open[^\n]*\\}\n\\{\"replay\":\"[^\n]*impulses.tnr\",\"result\":\"ok\",[^\n]*\\}\n$"
+  REQUIRES "replay_stack;replay_impulses;replay_damaged")
+tandem_replay_cli_test(verify-many-quiet 2 "verify|-q|${out}/stack.tnr|${out}/flipped.tnr"
+  OUT "^ERROR     [^\n]*flipped.tnr: offset 12[^\n]*\nverified 2 files with 1 job: 1 ok, 0 mismatched, 1 not verified \\(bad file\\)\n$"
+  REQUIRES "replay_stack;replay_damaged")
+tandem_replay_cli_test(verify-many-cut 0 "verify|${out}/cut.tnr|${out}/stack.tnr" ALLOW_STDERR
+  OUT "^OK        [^\n]*cut.tnr: 60 ticks[^\n]*\\(truncated file\\)\nOK        [^\n]*stack.tnr: 60 ticks"
+  ERR "tandem verify: warning: .*cut.tnr: file cut at byte" REQUIRES "replay_stack;replay_damaged")
+# The two replays of a netplay with an injected desync (tests/CMakeLists.txt, ENet builds): the
+# perturbed peer's recording mismatches at the injected tick, the other verifies.
+if(TEST net/cli_netplay_desync)
+  set(net_art ${CMAKE_CURRENT_BINARY_DIR}/net_artifacts)
+  tandem_replay_cli_test(verify-many-netplay-desync 1
+    "verify|--jobs|2|--json|${net_art}/netplay_peer0.replay|${net_art}/netplay_peer1.replay"
+    OUT "\"result\":\"mismatch\",[^\n]*\"mismatch_tick\":100,"
+    REQUIRES netplay_desync_artifacts)
+  tandem_replay_cli_test(verify-many-netplay-text 1
+    "verify|${net_art}/netplay_peer0.replay|${net_art}/netplay_peer1.replay|${out}/stack.tnr"
+    OUT "MISMATCH  [^\n]*netplay_peer[01].replay: tick 100, expected 0x[0-9a-f]+, got 0x[0-9a-f]+\n.*verified 3 files with 1 job: 2 ok, 1 mismatched, 0 not verified"
+    REQUIRES "netplay_desync_artifacts;replay_stack")
+endif()
+# The same from the arena scene file: the verdict includes the scores (game states) checked.
+if(TEST net/cli_netplay_scene_desync)
+  set(net_art_scene ${CMAKE_CURRENT_BINARY_DIR}/net_artifacts_scene)
+  tandem_replay_cli_test(verify-netplay-scene-game-states 1
+    "verify|-j|2|--json|${net_art_scene}/netplay_peer0.replay|${net_art_scene}/netplay_peer1.replay"
+    OUT "\"result\":\"ok\",[^\n]*\"game_states_recorded\":[1-9][0-9]*,\"game_states_checked\":[1-9][0-9]*,.*\"result\":\"mismatch\",[^\n]*\"mismatch_tick\":60,[^\n]*\"difference\":\\{\"record\":\"body\",\"index\":44,"
+    REQUIRES netplay_scene_artifacts)
+endif()
+tandem_replay_cli_test(verify-bad-jobs 2 "verify|--jobs|-1|${out}/stack.tnr" ERR "jobs")
+
 # --- diff -----------------------------------------------------------------------------
 tandem_replay_cli_test(diff-same 0 "diff|${out}/stack.tnr|${out}/stack.tnr"
   OUT "method: hash chain, ticks compared: 60\nIDENTICAL" REQUIRES replay_stack)

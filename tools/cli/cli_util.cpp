@@ -8,8 +8,8 @@
 
 namespace tandem::cli {
 
-ProgressBar::ProgressBar(const char* label, bool off)
-    : label_(label), enabled_(!off && isatty(STDERR_FILENO) != 0) {}
+ProgressBar::ProgressBar(const char* label, bool off, const char* unit)
+    : label_(label), unit_(unit), enabled_(!off && isatty(STDERR_FILENO) != 0) {}
 
 void ProgressBar::update(uint64_t done, uint64_t total) {
   if (!enabled_ || total == 0) return;
@@ -19,9 +19,9 @@ void ProgressBar::update(uint64_t done, uint64_t total) {
   shown_ = true;
   const uint64_t width = 40;
   const uint64_t filled = (done > total ? total : done) * width / total;
-  std::fprintf(stderr, "\r%s%s[%s%s] %3d%% tick %" PRIu64 "/%" PRIu64, label_, *label_ != '\0' ? " " : "",
+  std::fprintf(stderr, "\r%s%s[%s%s] %3d%% %s %" PRIu64 "/%" PRIu64, label_, *label_ != '\0' ? " " : "",
                std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
-               static_cast<int>(done * 100 / total), done, total);
+               static_cast<int>(done * 100 / total), unit_, done, total);
   std::fflush(stderr);
 }
 

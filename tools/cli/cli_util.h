@@ -18,12 +18,13 @@ namespace tandem::cli {
 /// 100 ms; erased by finish() (and the destructor).
 class ProgressBar {
  public:
-  /// `label` (may be empty) is printed before the bar; it must outlive the bar.
-  ProgressBar(const char* label, bool off);
+  /// `label` (may be empty) is printed before the bar and `unit` ("tick",
+  /// "file") before the count; both must outlive the bar.
+  ProgressBar(const char* label, bool off, const char* unit = "tick");
   ~ProgressBar() { finish(); }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
-  /// Shows `done` of `total` ticks (nothing when total is 0).
+  /// Shows `done` of `total` units (nothing when total is 0).
   void update(uint64_t done, uint64_t total);
   /// Erases the bar if it was drawn.
   void finish();
@@ -31,6 +32,7 @@ class ProgressBar {
  private:
   using Clock = std::chrono::steady_clock;
   const char* label_;
+  const char* unit_;
   bool enabled_;
   bool shown_ = false;
   Clock::time_point start_ = Clock::now(), last_ = start_;

@@ -13,7 +13,7 @@
 // on stderr, naming the file and the byte offset; warnings (a truncated
 // replay) on stderr. The progress bar appears on stderr only when stderr is
 // a terminal, the job has run for more than a second, and neither --quiet
-// nor --json is given.
+// nor --json is given. `verify` takes many files and --jobs N (see below).
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
@@ -22,8 +22,11 @@
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
+#include <algorithm>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli.h"
@@ -34,6 +37,7 @@
 #include "replay/synctest.h"
 #include "replay/verify.h"
 #include "scene/scene.h"
+#include "tools/net/arena_game.h"
 
 namespace tandem::cli {
 namespace {
@@ -226,56 +230,192 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
 }
 
 // --- verify -------------------------------------------------------------------
+// One file: the report as before (text, --quiet line, or one JSON object);
+// an unreadable file is an error on stderr, exit 2. Several files (or
+// --jobs): `jobs` threads take the files in turn, each verified alone; the
+// verdicts are printed in the order of the arguments as soon as every
+// earlier file is done (one JSON object per file and line with --json; one
+// text line per file otherwise, then a summary), and the exit code is 2 if
+// any file could not be read or run, else 1 if any mismatched, else 0.
 struct VerifyArgs {
-  std::string file;
+  std::vector<std::string> files;
+  uint32_t jobs = 0;
+  bool jobs_given = false;
   bool json = false, quiet = false;
 };
 
-int run_verify(const VerifyArgs& a, const GlobalOptions& g) {
-  const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
+// The verdict on one file.
+struct FileVerdict {
+  std::string file;
+  int rc = 0;              // 0 ok, 1 mismatch, 2 error
+  std::string error;       // rc 2: why
+  std::string warning;     // a truncated file
+  bool truncated = false;
+  VerifyReport report;
+};
+
+FileVerdict verify_file(const std::string& path, const ProgressCallback& progress) {
+  FileVerdict v;
+  v.file = path;
   Replay replay;
   ReplayReadInfo info;
-  if (int rc = load_replay("verify", a.file, &replay, &info)) return rc;
-  ProgressBar progress("verify", quiet || json);
+  const Status s = read_replay_file(path, &replay, &info);
+  if (!s.ok()) {
+    v.rc = 2;
+    v.error = s.message;
+    return v;
+  }
+  v.warning = info.warning;
+  v.truncated = info.truncated;
   VerifyOptions options;
-  options.progress = [&progress](uint64_t done, uint64_t total) { progress.update(done, total); };
-  const VerifyReport rep = verify_replay(replay, options);
-  progress.finish();
-  const int rc = verify_exit_code(rep);
-  if (rc == 2) return fail("verify", a.file + ": " + rep.error.message);
-  if (json) {
-    Json j;
-    j["replay"] = a.file;
-    j["result"] = rep.mismatch ? "mismatch" : "ok";
-    j["truncated"] = info.truncated;
-    j["ticks_run"] = rep.ticks_run;
-    j["hashes_checked"] = rep.hashes_checked;
-    j["keyframes_checked"] = rep.keyframes_checked;
-    j["refused_commands"] = rep.refused_commands;
-    j["skipped_payloads"] = rep.skipped_payloads;
-    if (rep.mismatch) {
-      j["mismatch_tick"] = rep.mismatch_tick;
-      j["expected_hash"] = hex64(rep.expected_hash);
-      j["actual_hash"] = hex64(rep.actual_hash);
-      j["self_consistent"] = rep.self_consistent;
-      if (rep.located) {
-        j["located_tick"] = rep.located_tick;
-        j["difference"] = difference_json(rep.difference);
-      }
-      if (!rep.note.empty()) j["note"] = rep.note;
+  options.progress = progress;
+  // A session recording of the bundled arena: its scores are checked too.
+  uint32_t players = 0, first_disc = 0;
+  if (replay.header.has_scene_bytes && arena::parse_replay_scene(replay.header.scene_bytes, &players, &first_disc)) {
+    const Status g = arena::verify_game_step(players, first_disc, &options.game);
+    if (!g.ok()) {
+      v.rc = 2;
+      v.error = path + ": arena game logic: " + g.message;
+      return v;
     }
-    std::printf("%s\n", j.dump().c_str());
-    return rc;
+  }
+  v.report = verify_replay(replay, options);
+  v.rc = verify_exit_code(v.report);
+  if (v.rc == 2) v.error = path + ": " + v.report.error.message;
+  return v;
+}
+
+Json verdict_json(const FileVerdict& v) {
+  Json j;
+  j["replay"] = v.file;
+  const VerifyReport& rep = v.report;
+  if (v.rc == 2) {
+    j["result"] = "error";
+    j["error"] = v.error;
+    return j;
+  }
+  j["result"] = rep.mismatch ? "mismatch" : "ok";
+  j["truncated"] = v.truncated;
+  j["ticks_run"] = rep.ticks_run;
+  j["hashes_checked"] = rep.hashes_checked;
+  j["keyframes_checked"] = rep.keyframes_checked;
+  j["game_states_recorded"] = rep.game_states_recorded;
+  j["game_states_checked"] = rep.game_states_checked;
+  j["refused_commands"] = rep.refused_commands;
+  j["skipped_payloads"] = rep.skipped_payloads;
+  if (rep.mismatch) {
+    j["mismatch_tick"] = rep.mismatch_tick;
+    j["expected_hash"] = hex64(rep.expected_hash);
+    j["actual_hash"] = hex64(rep.actual_hash);
+    j["self_consistent"] = rep.self_consistent;
+    if (rep.game_state_mismatch) j["game_state_mismatch"] = true;
+    if (rep.located) {
+      j["located_tick"] = rep.located_tick;
+      j["difference"] = difference_json(rep.difference);
+    }
+    if (!rep.note.empty()) j["note"] = rep.note;
+  }
+  return j;
+}
+
+// One text line of the batch output.
+std::string verdict_line(const FileVerdict& v) {
+  const VerifyReport& rep = v.report;
+  char buf[160];
+  if (v.rc == 2) return "ERROR     " + v.error;  // the message names the file
+  if (!rep.mismatch) {
+    std::snprintf(buf, sizeof buf, ": %" PRIu64 " ticks, %" PRIu64 " hashes, %" PRIu64 " keyframes", rep.ticks_run,
+                  rep.hashes_checked, rep.keyframes_checked);
+    return "OK        " + v.file + buf + (v.truncated ? " (truncated file)" : "");
+  }
+  std::snprintf(buf, sizeof buf, ": tick %" PRIu64 ", expected %s, got %s", rep.mismatch_tick,
+                hex64(rep.expected_hash).c_str(), hex64(rep.actual_hash).c_str());
+  std::string line = "MISMATCH  " + v.file + buf;
+  if (rep.located) line += "; at tick " + std::to_string(rep.located_tick) + ": " + rep.difference.describe();
+  return line;
+}
+
+int run_verify_one(const std::string& file, bool json, bool quiet) {
+  ProgressBar progress("verify", quiet || json);
+  const FileVerdict v =
+      verify_file(file, [&progress](uint64_t done, uint64_t total) { progress.update(done, total); });
+  progress.finish();
+  if (v.rc == 2) return fail("verify", v.error);
+  if (!v.warning.empty()) std::fprintf(stderr, "tandem verify: warning: %s\n", v.warning.c_str());
+  const VerifyReport& rep = v.report;
+  if (json) {
+    std::printf("%s\n", verdict_json(v).dump().c_str());
+    return v.rc;
   }
   if (quiet) {
     if (rep.mismatch)
       std::printf("MISMATCH at tick %" PRIu64 "\n", rep.mismatch_tick);
     else
       std::printf("OK %" PRIu64 " ticks\n", rep.ticks_run);
-    return rc;
+    return v.rc;
   }
-  std::printf("verify %s\n%s", a.file.c_str(), format_verify_report(rep).c_str());
-  return rc;
+  std::printf("verify %s\n%s", file.c_str(), format_verify_report(rep).c_str());
+  return v.rc;
+}
+
+int run_verify_batch(const VerifyArgs& a, bool json, bool quiet) {
+  const size_t n = a.files.size();
+  uint32_t jobs = !a.jobs_given ? 1 : a.jobs != 0 ? a.jobs : std::max(1u, std::thread::hardware_concurrency());
+  if (jobs > n) jobs = static_cast<uint32_t>(n);
+  std::vector<FileVerdict> verdicts(n);
+  std::vector<uint8_t> done(n, 0);
+  std::mutex mutex;
+  size_t next = 0, printed = 0, finished = 0;
+  uint32_t ok = 0, mismatched = 0, errors = 0;
+  ProgressBar progress("verify", quiet || json, "file");
+  // Prints every verdict whose predecessors are printed (mutex held).
+  auto flush = [&] {
+    while (printed < n && done[printed] != 0) {
+      const FileVerdict& v = verdicts[printed];
+      progress.finish();
+      if (!v.warning.empty()) std::fprintf(stderr, "tandem verify: warning: %s\n", v.warning.c_str());
+      if (json)
+        std::printf("%s\n", verdict_json(v).dump().c_str());
+      else if (!quiet || v.rc != 0)
+        std::printf("%s\n", verdict_line(v).c_str());
+      std::fflush(stdout);
+      (v.rc == 0 ? ok : v.rc == 1 ? mismatched : errors) += 1;
+      verdicts[printed] = FileVerdict{};  // free the report
+      ++printed;
+    }
+  };
+  auto worker = [&] {
+    for (;;) {
+      size_t i;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (next == n) return;
+        i = next++;
+      }
+      FileVerdict v = verify_file(a.files[i], {});
+      std::lock_guard<std::mutex> lock(mutex);
+      verdicts[i] = std::move(v);
+      done[i] = 1;
+      ++finished;
+      flush();
+      progress.update(finished, n);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (uint32_t t = 1; t < jobs; ++t) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  progress.finish();
+  if (!json)
+    std::printf("verified %zu file%s with %u job%s: %u ok, %u mismatched, %u not verified (bad file)\n", n,
+                n == 1 ? "" : "s", jobs, jobs == 1 ? "" : "s", ok, mismatched, errors);
+  return errors != 0 ? 2 : mismatched != 0 ? 1 : 0;
+}
+
+int run_verify(const VerifyArgs& a, const GlobalOptions& g) {
+  const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
+  if (a.files.size() == 1 && !a.jobs_given) return run_verify_one(a.files[0], json, quiet);
+  return run_verify_batch(a, json, quiet);
 }
 
 // --- diff ---------------------------------------------------------------------
@@ -440,15 +580,26 @@ void register_replay_commands(CLI::App& app, const GlobalOptions& options, std::
   commands->push_back({replay, [replay_args, &options] { return run_replay(*replay_args, options); }});
 
   auto* verify = app.add_subcommand(
-      "verify", "Re-simulate a replay and check every recorded hash (exit 0 match, 1 mismatch, 2 bad file)");
+      "verify", "Re-simulate replays and check every recorded hash (exit 0 match, 1 mismatch, 2 bad file)");
   auto verify_args = std::make_shared<VerifyArgs>();
-  verify->add_option("file", verify_args->file, "replay file")->required();
-  add_output_flags(verify, &verify_args->json, &verify_args->quiet, "print only OK or the mismatching tick");
+  verify->add_option("files", verify_args->files, "replay files (one or more)")->required();
+  verify->add_option("--jobs,-j", verify_args->jobs,
+                     "verify this many files at once (0: one per CPU; default: one file at a time)")
+      ->check(CLI::Range(0u, 1024u));
+  add_output_flags(verify, &verify_args->json, &verify_args->quiet,
+                   "one file: print only OK or the mismatching tick; several: only the failures and the summary");
   verify->footer(
       "On a mismatch, verify names the first tick whose hash differs and, from the\n"
       "next keyframe, the first differing body and field.\n"
-      "Examples:\n  tandem verify pyramid.tnr\n  tandem verify rain.tnr --json\n");
-  commands->push_back({verify, [verify_args, &options] { return run_verify(*verify_args, options); }});
+      "Several files (or --jobs): one line per file in argument order (with --json\n"
+      "one JSON object per line, errors included as \"result\":\"error\"), then a\n"
+      "summary; exit 2 if any file is unreadable, else 1 if any mismatched, else 0.\n"
+      "Examples:\n  tandem verify pyramid.tnr\n  tandem verify rain.tnr --json\n"
+      "  tandem verify --jobs 8 --json matches/*.tnr > verdicts.jsonl\n");
+  commands->push_back({verify, [verify, verify_args, &options] {
+                         verify_args->jobs_given = verify->count("--jobs") > 0;
+                         return run_verify(*verify_args, options);
+                       }});
 
   auto* diff = app.add_subcommand(
       "diff", "Find the first tick, body and field where two replays (or two snapshots) differ");

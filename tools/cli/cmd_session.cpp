@@ -26,6 +26,7 @@
 #include "replay/replay_file.h"
 #include "replay/session.h"
 #include "replay/verify.h"
+#include "scene/scene.h"
 #include "tools/net/arena_game.h"
 #include "tools/net/enet_transport.h"
 #include "tools/net/peer.h"
@@ -52,6 +53,8 @@ struct PlayArgs {
   uint64_t inject_desync = 0;
   uint32_t frame_us = 16667;
   uint32_t crates = 40;
+  std::string scene;  // --scene: the arena's walls and crates from a scene file
+  std::shared_ptr<const scene::Scene> loaded_scene;
   uint32_t connect_timeout_ms = 10000;
   uint32_t timeout_s = 120;
   bool json = false, quiet = false;
@@ -73,6 +76,15 @@ net::PeerOptions peer_options(const PlayArgs& a, uint32_t players, uint32_t endp
   o.frame_us = a.frame_us;
   o.bot_seed = a.seed;
   o.crates = a.crates;
+  if (a.loaded_scene) {
+    o.make_world = [scene = a.loaded_scene]() -> Result<WorldId> {
+      Result<scene::BuiltScene> built = scene::build_world(*scene);
+      Result<WorldId> w;
+      w.status = built.status;
+      if (built.ok()) w.value = built.value.world;
+      return w;
+    };
+  }
   o.inject_desync_tick = endpoint == 1 ? a.inject_desync : 0;
   o.run_timeout_ms = a.timeout_s * 1000;
   o.artifacts_prefix = prefix;
@@ -171,7 +183,21 @@ int check_common(const char* command, const PlayArgs& a) {
   return -1;
 }
 
-int run_session(const PlayArgs& a, const GlobalOptions& g) {
+// Loads --scene (when given) into a.loaded_scene; prints the error (exit 2).
+int load_arena_scene(const char* command, PlayArgs* a, const GlobalOptions& g) {
+  if (a->scene.empty()) return 0;
+  std::vector<uint8_t> text;
+  Status s = read_file_bytes(a->scene, &text);
+  if (!s.ok()) return fail(command, s.message);
+  Result<scene::Scene> loaded =
+      scene::load_scene_text(std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), a->scene, g.scene_limits);
+  if (!loaded.ok()) return fail(command, loaded.status.message);
+  a->loaded_scene = std::make_shared<const scene::Scene>(std::move(loaded.value));
+  return 0;
+}
+
+int run_session(PlayArgs& a, const GlobalOptions& g) {
+  if (int rc = load_arena_scene("session", &a, g)) return rc;
   const int bad = check_common("session", a);
   if (bad >= 0) return bad;
   if (a.peers.size() < 2 || a.peers.size() > 8) return fail("session", "--peers needs 2…8 addresses, got " + std::to_string(a.peers.size()));
@@ -198,7 +224,8 @@ int run_session(const PlayArgs& a, const GlobalOptions& g) {
   return report("session", a, results, json);
 }
 
-int run_netplay(const PlayArgs& a, const GlobalOptions& g) {
+int run_netplay(PlayArgs& a, const GlobalOptions& g) {
+  if (int rc = load_arena_scene("netplay", &a, g)) return rc;
   const int bad = check_common("netplay", a);
   if (bad >= 0) return bad;
   if (a.players < 2 || a.players > 8) return fail("netplay", "--players must be 2…8");
@@ -243,7 +270,11 @@ void add_common(CLI::App* c, PlayArgs* a) {
   c->add_option("--inject-desync", a->inject_desync, "nudge player 0's disc by one raw unit on endpoint 1 after this tick")
       ->check(CLI::NonNegativeNumber);
   c->add_option("--frame-us", a->frame_us, "frame length in microseconds (default 16667: 60 Hz)")->check(CLI::Range(1000, 1000000));
-  c->add_option("--crates", a->crates, "crates in the arena (default 40)")->check(CLI::Range(0, 1000));
+  auto* crates = c->add_option("--crates", a->crates, "crates in the arena built in code (default 40)")->check(CLI::Range(0, 1000));
+  c->add_option("--scene", a->scene,
+                "the arena from a scene file instead (scenes/arena.json: walls and crates; the players' discs are added "
+                "after its bodies)")
+      ->excludes(crates);
   c->add_option("--artifacts", a->artifacts_dir, "where a desync writes peerN.replay and peerN.state (default .)");
   c->add_option("--connect-timeout", a->connect_timeout_ms, "ms to wait for every peer (default 10000)");
   c->add_option("--timeout", a->timeout_s, "give up after this many seconds (default 120)");
@@ -383,7 +414,8 @@ void register_session_commands(CLI::App& app, const GlobalOptions& options, std:
   netplay->footer(
       "Example:\n"
       "  tandem netplay --players 4 --mode rollback --loss 10 --latency 60 --jitter 20\n"
-      "  tandem netplay --players 2 --inject-desync 300 --artifacts /tmp");
+      "  tandem netplay --players 2 --inject-desync 300 --artifacts /tmp\n"
+      "  tandem netplay --players 3 --scene scenes/arena.json");
   commands->push_back({netplay, [na, &options] { return run_netplay(*na, options); }});
 
   auto* bench = app.add_subcommand("session-bench", "Rollback cost per frame of a 2-player session (in process, no sockets)");

@@ -9,7 +9,12 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "fixed/fixed_math.h"
@@ -61,19 +66,8 @@ struct Game {
       if (!s.ok()) return s.status;
     }
     for (uint32_t p = 0; p < player_count; ++p) {
-      BodyDef bd = default_body_def();
-      bd.type = BodyType::dynamic_body;
-      bd.gravity_scale = Q32::zero();
-      bd.linear_damping = 0.5_q32;
-      const SinCos<Q32> sc = sincos(Q32::from_ratio(2 * static_cast<int64_t>(p), static_cast<int64_t>(player_count)) * k_pi);
-      bd.position = Vec2{sc.cos * 6_q32, sc.sin * 6_q32};
-      const Result<BodyId> b = create_body(world, bd);
-      if (!b.ok()) return b.status;
-      Circle c;
-      c.radius = 0.5_q32;
-      const Result<ShapeId> s = create_circle_shape(b.value, default_shape_def(), c);
-      if (!s.ok()) return s.status;
-      players.push_back(body_ref(b.value));
+      const Status s = add_disc(world, p, player_count);
+      if (!s.ok()) return s;
     }
     if (crates > k_max_crates) crates = k_max_crates;
     for (uint32_t i = 0; i < crates; ++i) {
@@ -91,6 +85,19 @@ struct Game {
       if (!make_box(0.2_q32, 0.2_q32, &box).ok()) return Status{StatusCode::invalid_argument, "arena crate box"};
       const Result<ShapeId> s = create_polygon_shape(b.value, default_shape_def(), box);
       if (!s.ok()) return s.status;
+    }
+    return {};
+  }
+
+  /// Adds the players' discs (as build() does) after whatever the world holds
+  /// already: an arena loaded from a scene file (scenes/arena.json: walls,
+  /// crates). The discs' indices follow the world's bodies.
+  Status add_players(WorldId world, uint32_t player_count) {
+    players.clear();
+    scores.assign(player_count, 0);
+    for (uint32_t p = 0; p < player_count; ++p) {
+      const Status s = add_disc(world, p, player_count);
+      if (!s.ok()) return s;
     }
     return {};
   }
@@ -125,6 +132,24 @@ struct Game {
     for (int64_t& s : scores) s = r.i64("score");
   }
 
+  /// Player p's disc on a circle of radius 6 m; appends its ref to `players`.
+  Status add_disc(WorldId world, uint32_t p, uint32_t player_count) {
+    BodyDef bd = default_body_def();
+    bd.type = BodyType::dynamic_body;
+    bd.gravity_scale = Q32::zero();
+    bd.linear_damping = 0.5_q32;
+    const SinCos<Q32> sc = sincos(Q32::from_ratio(2 * static_cast<int64_t>(p), static_cast<int64_t>(player_count)) * k_pi);
+    bd.position = Vec2{sc.cos * 6_q32, sc.sin * 6_q32};
+    const Result<BodyId> b = create_body(world, bd);
+    if (!b.ok()) return b.status;
+    Circle c;
+    c.radius = 0.5_q32;
+    const Result<ShapeId> s = create_circle_shape(b.value, default_shape_def(), c);
+    if (!s.ok()) return s.status;
+    players.push_back(body_ref(b.value));
+    return {};
+  }
+
   /// Callbacks bound to this game (it must outlive the session).
   SessionCallbacks callbacks(std::function<void(uint32_t, std::span<const uint8_t>)> send) {
     SessionCallbacks c;
@@ -138,6 +163,49 @@ struct Game {
     return c;
   }
 };
+
+/// The replay scene bytes that name an arena game (SessionConfig::replay_scene):
+/// "tandem arena 1: players P, first disc body B" — the discs are bodies B…B+P−1
+/// of generation 1 (4 after build()'s walls; after the scene's bodies with add_players()).
+inline std::vector<uint8_t> replay_scene(uint32_t player_count, uint32_t first_disc) {
+  const std::string t =
+      "tandem arena 1: players " + std::to_string(player_count) + ", first disc body " + std::to_string(first_disc);
+  return std::vector<uint8_t>(t.begin(), t.end());
+}
+
+/// Parses replay_scene()'s bytes; false for anything else (another game, no scene).
+inline bool parse_replay_scene(std::span<const uint8_t> bytes, uint32_t* player_count, uint32_t* first_disc) {
+  const std::string t(bytes.begin(), bytes.end());
+  unsigned p = 0, b = 0;
+  int used = 0;
+  if (std::sscanf(t.c_str(), "tandem arena 1: players %u, first disc body %u%n", &p, &b, &used) != 2 ||
+      static_cast<size_t>(used) != t.size() || p < 1 || p > k_session_max_players || b > (1u << 24)) {
+    return false;
+  }
+  *player_count = p;
+  *first_disc = b;
+  return true;
+}
+
+/// The arena's game logic for verify_replay (VerifyOptions::game): scores
+/// from the recorded start, one after_step per tick, for the discs named by
+/// replay_scene().
+inline Status verify_game_step(uint32_t player_count, uint32_t first_disc,
+                               std::function<Status(uint64_t, WorldId, std::span<const uint8_t>, std::vector<uint8_t>*)>* out) {
+  auto game = std::make_shared<Game>();
+  for (uint32_t p = 0; p < player_count; ++p) game->players.push_back(BodyRef{first_disc + p, 1});
+  game->scores.assign(player_count, 0);
+  *out = [game](uint64_t tick, WorldId world, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
+    if (before.size() != game->scores.size() * 8)
+      return Status{StatusCode::invalid_argument, "arena game state of " + std::to_string(before.size()) +
+                                                      " bytes, expected " + std::to_string(game->scores.size() * 8)};
+    game->load(before);
+    game->after_step(tick, world);
+    game->save(after);
+    return Status{};
+  };
+  return Status{};
+}
 
 /// A bot's input for `tick`: a pure function of (seed, player, tick / change_every).
 inline void bot_input(uint64_t seed, uint32_t player, uint64_t tick, uint32_t change_every, uint8_t out[k_input_bytes]) {

@@ -12,14 +12,15 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
   using Clock = std::chrono::steady_clock;
   *out = {};
   const auto started = Clock::now();
-  Result<WorldId> w = create_world(default_world_def());
+  Result<WorldId> w = o.make_world ? o.make_world() : create_world(default_world_def());
   if (!w.ok()) {
     out->status = w.status;
     return;
   }
   const UniqueWorld guard{w.value};
   arena::Game game;
-  out->status = game.build(w.value, o.config.player_count, o.crates);
+  out->status = o.make_world ? game.add_players(w.value, o.config.player_count)
+                             : game.build(w.value, o.config.player_count, o.crates);
   if (!out->status.ok()) return;
   SessionCallbacks cb = game.callbacks([&](uint32_t to, std::span<const uint8_t> bytes) { transport.send(to, bytes); });
   if (o.inject_desync_tick != 0) {
@@ -34,7 +35,10 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
     };
   }
   Session session;
-  out->status = session.start(w.value, o.config, std::move(cb));
+  SessionConfig config = o.config;
+  if (config.replay_scene.empty() && !game.players.empty())
+    config.replay_scene = arena::replay_scene(config.player_count, game.players[0].index);
+  out->status = session.start(w.value, config, std::move(cb));
   if (!out->status.ok()) return;
 
   const auto frame = std::chrono::microseconds(o.frame_us);
@@ -92,6 +96,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
       out->status = s;
     }
   }
+  if (o.config.record_replay) out->replay = session.replay_bytes();
   transport.close(200);
   out->stop = session.stop_info();
   out->stats = session.stats();

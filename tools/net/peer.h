@@ -21,7 +21,10 @@ struct PeerOptions {
   uint32_t frame_us = 16667;       ///< frame length (60 Hz)
   uint64_t bot_seed = 7;
   uint32_t change_every = 6;       ///< bots change input every this many ticks
-  uint32_t crates = 40;            ///< arena crates (0…400)
+  uint32_t crates = 40;            ///< arena crates (0…1000), when the arena is built in code
+  /// Builds the arena from elsewhere (a scene file: walls, crates) into a new
+  /// world; the players' discs are added after its bodies. Unset: built in code.
+  std::function<Result<WorldId>()> make_world;
   uint64_t inject_desync_tick = 0; ///< nudge player 0's disc by one raw unit after this tick (0: never)
   uint32_t run_timeout_ms = 60000; ///< give up (status error) after this long
   uint32_t linger_frames = 30;     ///< frames played after the end so the others finish too
@@ -40,6 +43,7 @@ struct PeerResult {
   uint64_t final_hash = 0;         ///< confirmed hash of tick `ticks` (0 if not reached)
   std::vector<uint64_t> hashes;    ///< confirmed hash of every tick 1…, in order
   std::vector<std::string> artifacts;  ///< files written
+  std::vector<uint8_t> replay;     ///< with config.record_replay: the recorded replay (Session::replay_bytes)
   double seconds = 0;
 };
 
