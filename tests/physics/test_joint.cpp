@@ -439,12 +439,13 @@ TEST_CASE("joint: ragdolls piled in a box for 20 s stay together and inside", "[
   WARN(ragdolls << " ragdolls (" << links.size() << " joints) in a box for " << steps / 60
                 << " s: worst joint separation " << 1000.0 * worst << " mm (during the impacts), "
                 << 1000.0 * resting << " mm over the last 5 s (piled at rest)");
-  // Stated figures: soft joints at the default joint_hertz 60 (Box2D v3's
-  // joint softness) stretch by about a/(2π·60)² under an acceleration a, so
-  // the light forearms and shins of a falling pile separate by several
-  // centimetres for a few steps at impact; at rest the pile holds within 1 cm.
-  CHECK(worst < 0.08);
-  CHECK(resting < 0.01);
+  // Stated figures (the issue asks < 1 cm): the soft joints stretch at the
+  // impacts, and the rigid position pass (joint_solver.cpp) closes every
+  // revolute gap beyond its 3 mm slop after each sub-step and again after
+  // continuous collision. Measured: 3.2 mm at the impacts, 3.0 mm at rest
+  // (61 mm and 8.3 mm with the soft joints alone).
+  CHECK(worst < 0.01);
+  CHECK(resting < 0.004);
   CHECK_FALSE(escaped);
 }
 
