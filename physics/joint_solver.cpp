@@ -34,7 +34,7 @@
 // the slop (every joint at rest in a normal scene) see no change at all.
 // Continuous collision then stops fast bodies at their time of impact without
 // moving their joint partners, so stage_project_joints repeats the projection
-// k_joint_project_passes times after it. Measured (tests/physics/test_joint.cpp
+// up to k_joint_project_passes times after it. Measured (tests/physics/test_joint.cpp
 // ragdolls in a box, tests/tools/test_scene_joints.cpp ragdolls down stairs):
 // worst separation at impact 61 mm → 3.2 mm and 110 mm → 5.2 mm, at rest
 // 8.3 mm → 3.0 mm. Long chains under heavy loads (the 30-plank bridge, the
@@ -55,7 +55,11 @@ namespace {
 
 /// Revolute anchor gap the rigid position pass leaves alone, m (3 mm).
 constexpr Q32 k_joint_slop = Q32::from_ratio(3, 1000);
-/// Projection passes after continuous collision.
+/// k_joint_slop/√2 rounded down: a gap with both components within it is
+/// within the slop.
+constexpr Q32 k_joint_slop_inner = Q32::from_ratio(2121, 1000000);
+/// Projection passes after continuous collision (at most; a pass that moves
+/// nothing ends them).
 constexpr int32_t k_joint_project_passes = 4;
 
 /// One side of a joint during a pass: its state (a copy), written back only
@@ -498,13 +502,15 @@ void warm_start_one(Joint& j, StepContext* ctx) {
 
 /// The rigid position pass of one revolute joint (file comment): removes the
 /// anchor gap beyond k_joint_slop by moving the simulated sides' poses.
-void project_revolute(const Joint& j, StepContext* ctx) {
-  if (j.type != JointType::revolute) return;
+bool project_revolute(const Joint& j, StepContext* ctx) {
+  if (j.type != JointType::revolute) return false;
   const Pair p = load(j, ctx);
   const Anchors an = anchors(j, p);
+  // Inside the square of half side slop/√2 the gap is within the slop: no root.
+  if (abs(an.d.x) <= k_joint_slop_inner && abs(an.d.y) <= k_joint_slop_inner) return false;
   Q32 gap;
   const Vec2 n = length_and_normalize(an.d, &gap);
-  if (gap <= k_joint_slop) return;
+  if (gap <= k_joint_slop) return false;
   const Vec2 impulse = -solve(point_mass(p, an.ra, an.rb), (gap - k_joint_slop) * n);
   if (j.step_solver_a >= 0) {
     BodyState& s = ctx->states[j.step_solver_a];
@@ -516,6 +522,7 @@ void project_revolute(const Joint& j, StepContext* ctx) {
     s.center = s.center + p.mb * impulse;
     s.rotation = integrate_rotation(s.rotation, p.ib * cross(an.rb, impulse));
   }
+  return true;
 }
 
 bool is_sleeping(const Body& b) { return b.type != BodyType::static_body && b.enabled && !b.awake; }
@@ -604,8 +611,11 @@ void stage_relax_joints(World* world, StepContext* context) {
 
 void stage_project_joints(World* world, StepContext* context) {
   if (world->joint_pool.alive_count == 0) return;
-  for (int32_t pass = 0; pass < k_joint_project_passes; ++pass)
-    for_active_joints(world, [&](Joint& j) { project_revolute(j, context); });
+  for (int32_t pass = 0; pass < k_joint_project_passes; ++pass) {
+    bool moved = false;  // a pass that moved nothing ends the projection
+    for_active_joints(world, [&](Joint& j) { moved = project_revolute(j, context) || moved; });
+    if (!moved) break;
+  }
 }
 
 void stage_store_joints(World* world, StepContext* context) {

@@ -297,7 +297,10 @@ SceneSpec make_joint_grid(int32_t n) {
       b.self_collide = false;
       const int32_t index = static_cast<int32_t>(s.bodies.size());
       if (i > 0) s.joints.push_back(RevoluteSpec{index - 1, index, b.x, b.y + half, false, {}, {}});
-      if (k > 0) s.joints.push_back(RevoluteSpec{index - n, index, b.x - half, b.y, false, {}, {}});
+      // v3 also joins the static anchors to each other (a joint that does
+      // nothing); Tandem refuses a joint between two static bodies.
+      const bool both_static = !b.dynamic && !s.bodies[static_cast<size_t>(index - n)].dynamic;
+      if (k > 0 && !both_static) s.joints.push_back(RevoluteSpec{index - n, index, b.x - half, b.y, false, {}, {}});
       if (b.dynamic) ++s.dynamic_count;
       s.bodies.push_back(b);
     }
