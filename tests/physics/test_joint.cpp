@@ -496,6 +496,33 @@ TEST_CASE("joint: joined bodies sleep together and wake together", "[physics][jo
   CHECK(body_is_awake(b));
 }
 
+TEST_CASE("joint: a body joined to a moving kinematic body never falls asleep", "[physics][joint]") {
+  // A ball pinned at the centre of a slowly turning kinematic disc barely
+  // moves (below the sleep tolerances), but the joint drives it: it must
+  // stay awake for as long as the disc turns, and may sleep once it stops.
+  ScopedWorld world;
+  BodyDef kd = default_body_def();
+  kd.type = BodyType::kinematic_body;
+  kd.angular_velocity = 0.5_q32;
+  const Result<BodyId> disc = create_body(world.id, kd);
+  REQUIRE(disc.ok());
+  REQUIRE(create_circle_shape(disc.value, default_shape_def(), Circle{{}, 1_q32}).ok());
+  const BodyId ball = add_ball(world.id, Vec2{}, 0.1_q32, 1_q32, true);
+  RevoluteJointDef rd = default_revolute_joint_def();
+  rd.base.body_a = disc.value;
+  rd.base.body_b = ball;
+  REQUIRE(create_revolute_joint(world.id, rd).ok());
+  int asleep_steps = 0;
+  for (int i = 0; i < 180; ++i) {
+    REQUIRE(world_step(world.id, k_dt).ok());
+    if (!body_is_awake(ball)) ++asleep_steps;
+  }
+  CHECK(asleep_steps == 0);
+  REQUIRE(body_set_angular_velocity(disc.value, 0_q32).ok());
+  for (int i = 0; i < 120; ++i) REQUIRE(world_step(world.id, k_dt).ok());
+  CHECK_FALSE(body_is_awake(ball));  // the disc stopped: the ball sleeps again
+}
+
 TEST_CASE("joint: destroying a body destroys its joints and reports them at the next step", "[physics][joint]") {
   ScopedWorld world;
   const BodyId ground = add_static(world.id);
