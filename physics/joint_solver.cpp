@@ -24,22 +24,28 @@
 //
 // Rigid position pass (revolute joints): the soft point constraint stretches
 // under load (about a/(2π·joint_hertz)² under an acceleration a), so a light
-// limb hit by a heavy body opens its joint by centimetres for a few steps.
-// After each sub-step's relax, the part of a revolute joint's anchor gap
-// beyond k_joint_slop is removed by moving the two poses directly (a
-// non-linear Gauss-Seidel position projection with the point-constraint mass:
+// limb hit by a heavy body opens its joint by centimetres for a few steps, and
+// continuous collision stops a fast body at its time of impact without moving
+// its joint partners. Once per step, after continuous collision
+// (stage_project_joints), the part of each revolute joint's anchor gap beyond
+// k_joint_slop is removed by moving the two poses directly: a non-linear
+// Gauss-Seidel position projection with the point-constraint mass,
 // c_A −= m_A⁻¹·P, q_A turned by −i_A⁻¹·(r_A × P), B the other way, with
-// P = K⁻¹·(gap − slop·n)). Velocities are not touched, so no energy is
-// injected (the pendulum's 60 s energy figure is unchanged) and joints within
-// the slop (every joint at rest in a normal scene) see no change at all.
-// Continuous collision then stops fast bodies at their time of impact without
-// moving their joint partners, so stage_project_joints repeats the projection
-// up to k_joint_project_passes times after it. Measured (tests/physics/test_joint.cpp
-// ragdolls in a box, tests/tools/test_scene_joints.cpp ragdolls down stairs):
-// worst separation at impact 61 mm → 3.2 mm and 110 mm → 5.2 mm, at rest
-// 8.3 mm → 3.0 mm. Long chains under heavy loads (the 30-plank bridge, the
-// 50-link chain) still stretch by about 3 cm: a few Gauss-Seidel passes do
-// not propagate a correction along 30 links.
+// P = K⁻¹·(gap − slop·n), in joint index order, up to k_joint_project_passes
+// passes (a pass that moves nothing ends them). Velocities are not touched,
+// so no energy is injected (the pendulum's 60 s energy figure is unchanged)
+// and joints within the slop see no change at all. Measured
+// (tests/physics/test_joint.cpp ragdolls in a box,
+// tests/tools/test_scene_joints.cpp ragdolls down stairs): worst separation at
+// impact 61 mm → 3.3 mm and 110 mm → 7.3 mm, at rest 8.3 mm → 3.0 mm. Long
+// chains under heavy loads (the 30-plank bridge, the 50-link chain, a hanging
+// joint_grid) still stretch by about 3 cm: a few passes do not carry a
+// correction along 30 links, and there the pass costs time on every step
+// (about a fifth of joint_grid's step, docs/benchmarks.md). Also tried:
+// projecting after every sub-step as well (4.9 mm on the stairs, twice the
+// cost), two joint iterations per sub-step (37 mm), stiffer joint softness
+// (120 Hz: 22 mm, but the bridge fails), a rigid (non-soft) biased solve (the
+// bridge fails).
 //
 // Order: joints in ascending joint index, before the contacts, in every stage.
 // Arithmetic: Q32.32 with the checked operators (rounded to nearest, ties away
@@ -606,7 +612,6 @@ void stage_solve_joints(World* world, StepContext* context) {
 void stage_relax_joints(World* world, StepContext* context) {
   if (world->joint_pool.alive_count == 0) return;
   for_active_joints(world, [&](Joint& j) { solve_one(j, context, false); });
-  for_active_joints(world, [&](Joint& j) { project_revolute(j, context); });
 }
 
 void stage_project_joints(World* world, StepContext* context) {

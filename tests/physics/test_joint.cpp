@@ -441,9 +441,9 @@ TEST_CASE("joint: ragdolls piled in a box for 20 s stay together and inside", "[
                 << 1000.0 * resting << " mm over the last 5 s (piled at rest)");
   // Stated figures (the issue asks < 1 cm): the soft joints stretch at the
   // impacts, and the rigid position pass (joint_solver.cpp) closes every
-  // revolute gap beyond its 3 mm slop after each sub-step and again after
-  // continuous collision. Measured: 3.2 mm at the impacts, 3.0 mm at rest
-  // (61 mm and 8.3 mm with the soft joints alone).
+  // revolute gap beyond its 3 mm slop once per step, after continuous
+  // collision. Measured: 3.3 mm at the impacts, 3.0 mm at rest (61 mm and
+  // 8.3 mm with the soft joints alone).
   CHECK(worst < 0.01);
   CHECK(resting < 0.004);
   CHECK_FALSE(escaped);

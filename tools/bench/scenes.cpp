@@ -505,7 +505,7 @@ bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
 std::vector<std::string> default_scene_names() {
   return {"circles-1000", "circles-2000", "circles-4000", "circles-8000",  "circles-16000", "circles-32000",
           "pyramid-20",   "pyramid-100",  "rain-4000",    "many_pyramids", "smash",
-          "joint_grid",   "tumbler",      "spinner"};
+          "joint_grid",   "tumbler"};
 }
 
 }  // namespace tandem::bench
