@@ -224,6 +224,20 @@ void stage_update_sleep(World* world, StepContext* context) {
     if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
     if (body.sleep_time < k_time_to_sleep) blocked[find_root(parent, b)] = 1;
   }
+  // 3b. A moving kinematic body (its timer not run out) keeps the island of
+  //     every dynamic body joined to it awake: the joint drives that body, so
+  //     it would be woken again by stage_wake_joined the next step.
+  for (int32_t ji = 0; ji < id_pool_capacity(world->joint_pool); ++ji) {
+    if (!id_pool_is_alive(world->joint_pool, ji)) continue;
+    const Joint& j = world->joints.joints[static_cast<size_t>(ji)];
+    const Body& a = world->bodies[static_cast<size_t>(j.body_a)];
+    const Body& b = world->bodies[static_cast<size_t>(j.body_b)];
+    const auto moving_kinematic = [](const Body& k) {
+      return k.type == BodyType::kinematic_body && body_is_simulated(k) && k.sleep_time < k_time_to_sleep;
+    };
+    if (is_dynamic_simulated(a) && moving_kinematic(b)) blocked[find_root(parent, j.body_a)] = 1;
+    if (is_dynamic_simulated(b) && moving_kinematic(a)) blocked[find_root(parent, j.body_b)] = 1;
+  }
   for (int32_t b = 0; b < end; ++b) {
     const Body& body = world->bodies[static_cast<size_t>(b)];
     if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;

@@ -137,9 +137,12 @@ Result<JointId> add_joint(World* w, int32_t a, int32_t b, const JointBaseDef& ba
   const int32_t index = id_pool_allocate(&w->joint_pool);
   if (static_cast<size_t>(index) >= w->joints.joints.size()) w->joints.joints.resize(static_cast<size_t>(index) + 1);
   joint_at(w, index) = joint;
-  // Event buffers never grow inside a step: room for every joint to break.
+  // Nothing grows inside a step when joints break: room in the event list
+  // for every joint, and in the pool's free list for every slot.
   const size_t room = static_cast<size_t>(w->joint_pool.alive_count) + w->joints.pending.size();
   if (w->joints.events.capacity() < room) w->joints.events.reserve(room * 2);
+  const size_t slots = static_cast<size_t>(id_pool_capacity(w->joint_pool));
+  if (w->joint_pool.free_heap.capacity() < slots) w->joint_pool.free_heap.reserve(slots * 2);
   rebuild_joint_filter(w);
   wake_body_island(w, a);
   wake_body_island(w, b);

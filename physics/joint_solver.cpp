@@ -22,6 +22,31 @@
 // prepare and zero velocity and inverse mass; a kinematic body has zero
 // inverse mass, so the joint never changes it.
 //
+// Rigid position pass (revolute joints): the soft point constraint stretches
+// under load (about a/(2π·joint_hertz)² under an acceleration a), so a light
+// limb hit by a heavy body opens its joint by centimetres for a few steps, and
+// continuous collision stops a fast body at its time of impact without moving
+// its joint partners. Once per step, after continuous collision
+// (stage_project_joints), the part of each revolute joint's anchor gap beyond
+// k_joint_slop is removed by moving the two poses directly: a non-linear
+// Gauss-Seidel position projection with the point-constraint mass,
+// c_A −= m_A⁻¹·P, q_A turned by −i_A⁻¹·(r_A × P), B the other way, with
+// P = K⁻¹·(gap − slop·n), in joint index order, up to k_joint_project_passes
+// passes (a pass that moves nothing ends them). Velocities are not touched,
+// so no energy is injected (the pendulum's 60 s energy figure is unchanged)
+// and joints within the slop see no change at all. Measured
+// (tests/physics/test_joint.cpp ragdolls in a box,
+// tests/tools/test_scene_joints.cpp ragdolls down stairs): worst separation at
+// impact 61 mm → 3.3 mm and 110 mm → 7.3 mm, at rest 8.3 mm → 3.0 mm. Long
+// chains under heavy loads (the 30-plank bridge, the 50-link chain, a hanging
+// joint_grid) still stretch by about 3 cm: a few passes do not carry a
+// correction along 30 links, and there the pass costs time on every step
+// (about a fifth of joint_grid's step, docs/benchmarks.md). Also tried:
+// projecting after every sub-step as well (4.9 mm on the stairs, twice the
+// cost), two joint iterations per sub-step (37 mm), stiffer joint softness
+// (120 Hz: 22 mm, but the bridge fails), a rigid (non-soft) biased solve (the
+// bridge fails).
+//
 // Order: joints in ascending joint index, before the contacts, in every stage.
 // Arithmetic: Q32.32 with the checked operators (rounded to nearest, ties away
 // from zero); 2×2 systems by vec2.h's exact Cramer solve.
@@ -33,6 +58,15 @@
 namespace tandem {
 
 namespace {
+
+/// Revolute anchor gap the rigid position pass leaves alone, m (3 mm).
+constexpr Q32 k_joint_slop = Q32::from_ratio(3, 1000);
+/// k_joint_slop/√2 rounded down: a gap with both components within it is
+/// within the slop.
+constexpr Q32 k_joint_slop_inner = Q32::from_ratio(2121, 1000000);
+/// Projection passes after continuous collision (at most; a pass that moves
+/// nothing ends them).
+constexpr int32_t k_joint_project_passes = 4;
 
 /// One side of a joint during a pass: its state (a copy), written back only
 /// when the body is simulated.
@@ -472,6 +506,31 @@ void warm_start_one(Joint& j, StepContext* ctx) {
   store(j, p, ctx);
 }
 
+/// The rigid position pass of one revolute joint (file comment): removes the
+/// anchor gap beyond k_joint_slop by moving the simulated sides' poses.
+bool project_revolute(const Joint& j, StepContext* ctx) {
+  if (j.type != JointType::revolute) return false;
+  const Pair p = load(j, ctx);
+  const Anchors an = anchors(j, p);
+  // Inside the square of half side slop/√2 the gap is within the slop: no root.
+  if (abs(an.d.x) <= k_joint_slop_inner && abs(an.d.y) <= k_joint_slop_inner) return false;
+  Q32 gap;
+  const Vec2 n = length_and_normalize(an.d, &gap);
+  if (gap <= k_joint_slop) return false;
+  const Vec2 impulse = -solve(point_mass(p, an.ra, an.rb), (gap - k_joint_slop) * n);
+  if (j.step_solver_a >= 0) {
+    BodyState& s = ctx->states[j.step_solver_a];
+    s.center = s.center - p.ma * impulse;
+    s.rotation = integrate_rotation(s.rotation, -(p.ia * cross(an.ra, impulse)));
+  }
+  if (j.step_solver_b >= 0) {
+    BodyState& s = ctx->states[j.step_solver_b];
+    s.center = s.center + p.mb * impulse;
+    s.rotation = integrate_rotation(s.rotation, p.ib * cross(an.rb, impulse));
+  }
+  return true;
+}
+
 bool is_sleeping(const Body& b) { return b.type != BodyType::static_body && b.enabled && !b.awake; }
 
 bool wakes_others(const Body& b) {
@@ -553,6 +612,15 @@ void stage_solve_joints(World* world, StepContext* context) {
 void stage_relax_joints(World* world, StepContext* context) {
   if (world->joint_pool.alive_count == 0) return;
   for_active_joints(world, [&](Joint& j) { solve_one(j, context, false); });
+}
+
+void stage_project_joints(World* world, StepContext* context) {
+  if (world->joint_pool.alive_count == 0) return;
+  for (int32_t pass = 0; pass < k_joint_project_passes; ++pass) {
+    bool moved = false;  // a pass that moved nothing ends the projection
+    for_active_joints(world, [&](Joint& j) { moved = project_revolute(j, context) || moved; });
+    if (!moved) break;
+  }
 }
 
 void stage_store_joints(World* world, StepContext* context) {

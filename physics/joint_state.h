@@ -103,5 +103,9 @@ void stage_relax_joints(World* world, StepContext* context);
 /// After store_impulses: reaction forces, breaking (destroys broken joints and
 /// records their events), and the joint event list of the step.
 void stage_store_joints(World* world, StepContext* context);
+/// After continuous collision: the rigid position pass of the revolute joints
+/// (joint_solver.cpp), repeated, so a body that continuous collision stopped
+/// short does not leave its joint partners behind.
+void stage_project_joints(World* world, StepContext* context);
 
 }  // namespace tandem

@@ -504,6 +504,7 @@ StepResult world_step(WorldId id, Q32 time_step) {
   stage_store_joints(world, context);  // reactions, breaking, joint events
   profile_lap(&profile.store_impulses_ns, &mark);
   stage_continuous(world, context);  // fast bodies stop at their time of impact (continuous.cpp)
+  stage_project_joints(world, context);  // revolute joints closed again after it (joint_solver.cpp)
   profile_lap(&profile.continuous_ns, &mark);
   stage_finalize_bodies(world, context);
   profile_lap(&profile.finalize_ns, &mark);

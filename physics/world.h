@@ -25,6 +25,7 @@
 //   restitution                empty: bounces are solved inside the sub-steps (contact_solver.cpp)
 //   store_impulses             for warm starting; frees the constraints
 //   continuous                 fast bodies stop at their first time of impact (continuous.cpp)
+//   project_joints             revolute joint gaps beyond 3 mm closed by moving poses (joint_solver.cpp)
 //   finalize_bodies            write back, clear forces, leave-bounds check, shape AABBs
 //   update_sleep               sleep timers, union-find islands, islands to sleep (island.cpp)
 //

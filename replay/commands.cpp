@@ -317,7 +317,14 @@ bool operator==(const Command& a, const Command& b) {
     case CommandType::set_joint_motor_speed:
     case CommandType::set_joint_target:
     case CommandType::set_joint_length:
-    case CommandType::set_joint_limits: return equal_joint_command(a, b);
+    case CommandType::set_joint_limits:
+    case CommandType::enable_joint_motor:
+    case CommandType::set_joint_max_motor_force:
+    case CommandType::enable_joint_limit:
+    case CommandType::enable_joint_spring:
+    case CommandType::set_joint_spring:
+    case CommandType::set_joint_offsets:
+    case CommandType::set_joint_break_thresholds: return equal_joint_command(a, b);
   }
   return false;
 }
@@ -343,6 +350,13 @@ const char* command_type_name(CommandType type) {
     case CommandType::set_joint_target: return "set_joint_target";
     case CommandType::set_joint_length: return "set_joint_length";
     case CommandType::set_joint_limits: return "set_joint_limits";
+    case CommandType::enable_joint_motor: return "enable_joint_motor";
+    case CommandType::set_joint_max_motor_force: return "set_joint_max_motor_force";
+    case CommandType::enable_joint_limit: return "enable_joint_limit";
+    case CommandType::enable_joint_spring: return "enable_joint_spring";
+    case CommandType::set_joint_spring: return "set_joint_spring";
+    case CommandType::set_joint_offsets: return "set_joint_offsets";
+    case CommandType::set_joint_break_thresholds: return "set_joint_break_thresholds";
   }
   return "unknown";
 }
@@ -571,7 +585,14 @@ void encode_command(ByteWriter& w, const Command& c) {
     case CommandType::set_joint_motor_speed:
     case CommandType::set_joint_target:
     case CommandType::set_joint_length:
-    case CommandType::set_joint_limits: encode_joint_command(w, c); break;
+    case CommandType::set_joint_limits:
+    case CommandType::enable_joint_motor:
+    case CommandType::set_joint_max_motor_force:
+    case CommandType::enable_joint_limit:
+    case CommandType::enable_joint_spring:
+    case CommandType::set_joint_spring:
+    case CommandType::set_joint_offsets:
+    case CommandType::set_joint_break_thresholds: encode_joint_command(w, c); break;
   }
 }
 
@@ -647,6 +668,13 @@ bool decode_command(ByteReader& r, Command* out) {
     case CommandType::set_joint_target:
     case CommandType::set_joint_length:
     case CommandType::set_joint_limits:
+    case CommandType::enable_joint_motor:
+    case CommandType::set_joint_max_motor_force:
+    case CommandType::enable_joint_limit:
+    case CommandType::enable_joint_spring:
+    case CommandType::set_joint_spring:
+    case CommandType::set_joint_offsets:
+    case CommandType::set_joint_break_thresholds:
       if (!decode_joint_command(r, out)) return false;
       break;
   }

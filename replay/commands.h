@@ -54,6 +54,11 @@
 //   set_joint_motor_speed, set_joint_length: JointRef, q32
 //   set_joint_target:   JointRef, vec2
 //   set_joint_limits:   JointRef, q32 lower, q32 upper
+//   enable_joint_motor, enable_joint_limit, enable_joint_spring: JointRef, u8 flag
+//   set_joint_max_motor_force: JointRef, q32 (N or N·m)
+//   set_joint_spring:   JointRef, q32 hertz, q32 damping_ratio
+//   set_joint_offsets:  JointRef, vec2 linear_offset, q32 angular_offset
+//   set_joint_break_thresholds: JointRef, q32 force, q32 torque
 // BodyRef = u32 index, u32 generation. vec2 = q32 x, q32 y; q32 = i64 raw;
 // rot = q32 c, q32 s.
 // BodyDef = u8 type (0…2), vec2 position, rot rotation, vec2 linear_velocity,
@@ -108,10 +113,17 @@ enum class CommandType : uint8_t {
   set_joint_target = 17,
   set_joint_length = 18,
   set_joint_limits = 19,
+  enable_joint_motor = 20,
+  set_joint_max_motor_force = 21,
+  enable_joint_limit = 22,
+  enable_joint_spring = 23,
+  set_joint_spring = 24,
+  set_joint_offsets = 25,
+  set_joint_break_thresholds = 26,
 };
 
 /// The last command type (decoders accept 1…k_last_command_type).
-inline constexpr uint8_t k_last_command_type = 19;
+inline constexpr uint8_t k_last_command_type = 26;
 
 /// Most shapes in one create_body command.
 inline constexpr uint32_t k_max_command_shapes = 1u << 16;
@@ -257,9 +269,23 @@ Command make_set_joint_target(JointRef joint, Vec2 target);
 Command make_set_joint_length(JointRef joint, Q32 length);
 /// joint_set_limits (rad or m; a rope's min and max length).
 Command make_set_joint_limits(JointRef joint, Q32 lower, Q32 upper);
+/// joint_enable_motor.
+Command make_enable_joint_motor(JointRef joint, bool enable);
+/// joint_set_max_motor_force (N, or N·m for revolute and wheel joints).
+Command make_set_joint_max_motor_force(JointRef joint, Q32 force_or_torque);
+/// joint_enable_limit.
+Command make_enable_joint_limit(JointRef joint, bool enable);
+/// joint_enable_spring.
+Command make_enable_joint_spring(JointRef joint, bool enable);
+/// joint_set_spring (Hz, dimensionless damping ratio).
+Command make_set_joint_spring(JointRef joint, Q32 hertz, Q32 damping_ratio);
+/// joint_set_offsets (motor joint: m in body A's frame, rad).
+Command make_set_joint_offsets(JointRef joint, Vec2 linear_offset, Q32 angular_offset);
+/// joint_set_break_thresholds (N, N·m; 0 = never breaks).
+Command make_set_joint_break_thresholds(JointRef joint, Q32 force, Q32 torque);
 
 // Joint commands, shared with commands.cpp (joint_commands.cpp).
-/// Applies a joint command (types create_joint…set_joint_limits).
+/// Applies a joint command (types create_joint…set_joint_break_thresholds).
 Status apply_joint_command(WorldId world, const Command& command);
 /// Encodes the fields of a joint command after its type byte.
 void encode_joint_command(ByteWriter& writer, const Command& command);

@@ -1,25 +1,109 @@
 // joint_commands.cpp — the joint commands of replay/commands.h: create and
-// destroy a joint, set its motor speed, target, length and limits. Their
-// encoding is listed in commands.h; applying goes through the public joint
-// API (physics/joint.h), so a refused command changes nothing and its
-// Status names the field.
+// destroy a joint and every joint setter of physics/joint.h (motor speed,
+// enable and max force; target; length; limits and their enable; spring and
+// its enable; motor joint offsets; break thresholds). Their encoding is
+// listed in commands.h and written down once, in visit_joint_fields(): the
+// encoder, the decoder and equality all walk that one field list, so a field
+// added there is written, read and compared in the same place and order.
+// Applying goes through the public joint API, so a refused command changes
+// nothing and its Status names the field.
 #include "replay/commands.h"
 
 namespace tandem {
 
 namespace {
 
-void write_joint_ref(ByteWriter& w, JointRef r) {
-  w.u32(r.index);
-  w.u32(r.generation);
+/// The fields of a joint command after its type byte, in encoding order, for
+/// a visitor V with flag, q32, u64, vec2 and ref members (Writer, Reader
+/// below). C is Command or const Command. create_joint's JointSpec type byte
+/// is handled by the caller (the decoder checks its range first).
+template <typename V, typename C>
+void visit_joint_fields(V& v, C& c) {
+  if (c.type == CommandType::create_joint) {
+    auto& s = c.joint_spec;
+    v.ref(s.body_a.index, s.body_a.generation, "body_a.index", "body_a.generation");
+    v.ref(s.body_b.index, s.body_b.generation, "body_b.index", "body_b.generation");
+    v.vec2(s.local_anchor_a, "local_anchor_a.x", "local_anchor_a.y");
+    v.vec2(s.local_anchor_b, "local_anchor_b.x", "local_anchor_b.y");
+    v.flag(s.collide_connected, "collide_connected");
+    v.q32(s.break_force, "break_force");
+    v.q32(s.break_torque, "break_torque");
+    v.u64(s.user_data, "user_data");
+    v.vec2(s.local_axis, "local_axis.x", "local_axis.y");
+    v.q32(s.reference_angle, "reference_angle");
+    v.flag(s.enable_spring, "enable_spring");
+    v.flag(s.enable_limit, "enable_limit");
+    v.flag(s.enable_motor, "enable_motor");
+    v.q32(s.hertz, "hertz");
+    v.q32(s.damping_ratio, "damping_ratio");
+    v.q32(s.angular_hertz, "angular_hertz");
+    v.q32(s.angular_damping_ratio, "angular_damping_ratio");
+    v.q32(s.length, "length");
+    v.q32(s.lower, "lower");
+    v.q32(s.upper, "upper");
+    v.q32(s.motor_speed, "motor_speed");
+    v.q32(s.motor_force, "motor_force");
+    v.vec2(s.target, "target.x", "target.y");
+    v.q32(s.angular_offset, "angular_offset");
+    v.q32(s.max_force, "max_force");
+    v.q32(s.max_torque, "max_torque");
+    v.q32(s.correction_factor, "correction_factor");
+    return;
+  }
+  v.ref(c.joint.index, c.joint.generation, "joint.index", "joint.generation");
+  switch (c.type) {
+    case CommandType::set_joint_motor_speed: v.q32(c.scalar, "motor_speed"); break;
+    case CommandType::set_joint_length: v.q32(c.scalar, "length"); break;
+    case CommandType::set_joint_target: v.vec2(c.vector, "target.x", "target.y"); break;
+    case CommandType::set_joint_limits:
+      v.q32(c.scalar, "lower");
+      v.q32(c.scalar2, "upper");
+      break;
+    case CommandType::enable_joint_motor: v.flag(c.flag, "enable_motor"); break;
+    case CommandType::set_joint_max_motor_force: v.q32(c.scalar, "max_motor_force"); break;
+    case CommandType::enable_joint_limit: v.flag(c.flag, "enable_limit"); break;
+    case CommandType::enable_joint_spring: v.flag(c.flag, "enable_spring"); break;
+    case CommandType::set_joint_spring:
+      v.q32(c.scalar, "hertz");
+      v.q32(c.scalar2, "damping_ratio");
+      break;
+    case CommandType::set_joint_offsets:
+      v.vec2(c.vector, "linear_offset.x", "linear_offset.y");
+      v.q32(c.scalar, "angular_offset");
+      break;
+    case CommandType::set_joint_break_thresholds:
+      v.q32(c.scalar, "break_force");
+      v.q32(c.scalar2, "break_torque");
+      break;
+    default: break;  // destroy_joint: the ref only
+  }
 }
 
-JointRef read_joint_ref(ByteReader& r) {
-  JointRef j;
-  j.index = r.u32("joint.index");
-  j.generation = r.u32("joint.generation");
-  return j;
-}
+/// Writes each field (visit_joint_fields).
+struct Writer {
+  ByteWriter& w;
+  void flag(bool v, const char*) { w.boolean(v); }
+  void q32(Q32 v, const char*) { w.q32(v); }
+  void u64(uint64_t v, const char*) { w.u64(v); }
+  void vec2(Vec2 v, const char*, const char*) { w.vec2(v); }
+  void ref(uint32_t index, uint32_t generation, const char*, const char*) {
+    w.u32(index);
+    w.u32(generation);
+  }
+};
+
+/// Reads each field, naming it in errors (visit_joint_fields).
+struct Reader {
+  ByteReader& r;
+  void flag(bool& v, const char* what) { v = r.boolean(what); }
+  void q32(Q32& v, const char* what) { v = r.q32(what); }
+  void u64(uint64_t& v, const char* what) { v = r.u64(what); }
+  void vec2(Vec2& v, const char* x, const char* y) { v = r.vec2(x, y); }
+  void ref(uint32_t& index, uint32_t& generation, const char* what_index, const char* what_generation) {
+    index = r.u32(what_index);
+    generation = r.u32(what_generation);
+  }
+};
 
 JointBaseDef base_of(WorldId world, const JointSpec& s) {
   JointBaseDef b;
@@ -130,18 +214,6 @@ Status create_from_spec(WorldId world, const JointSpec& s) {
   return Status{StatusCode::invalid_argument, "create_joint: unknown joint type"};
 }
 
-void write_body_ref(ByteWriter& w, BodyRef r) {
-  w.u32(r.index);
-  w.u32(r.generation);
-}
-
-BodyRef read_body_ref(ByteReader& r, const char* index_name, const char* generation_name) {
-  BodyRef b;
-  b.index = r.u32(index_name);
-  b.generation = r.u32(generation_name);
-  return b;
-}
-
 }  // namespace
 
 Command make_create_joint(const JointSpec& spec) {
@@ -191,6 +263,62 @@ Command make_set_joint_limits(JointRef joint, Q32 lower, Q32 upper) {
   return c;
 }
 
+namespace {
+
+Command joint_command(CommandType type, JointRef joint) {
+  Command c;
+  c.type = type;
+  c.joint = joint;
+  return c;
+}
+
+}  // namespace
+
+Command make_enable_joint_motor(JointRef joint, bool enable) {
+  Command c = joint_command(CommandType::enable_joint_motor, joint);
+  c.flag = enable;
+  return c;
+}
+
+Command make_set_joint_max_motor_force(JointRef joint, Q32 force_or_torque) {
+  Command c = joint_command(CommandType::set_joint_max_motor_force, joint);
+  c.scalar = force_or_torque;
+  return c;
+}
+
+Command make_enable_joint_limit(JointRef joint, bool enable) {
+  Command c = joint_command(CommandType::enable_joint_limit, joint);
+  c.flag = enable;
+  return c;
+}
+
+Command make_enable_joint_spring(JointRef joint, bool enable) {
+  Command c = joint_command(CommandType::enable_joint_spring, joint);
+  c.flag = enable;
+  return c;
+}
+
+Command make_set_joint_spring(JointRef joint, Q32 hertz, Q32 damping_ratio) {
+  Command c = joint_command(CommandType::set_joint_spring, joint);
+  c.scalar = hertz;
+  c.scalar2 = damping_ratio;
+  return c;
+}
+
+Command make_set_joint_offsets(JointRef joint, Vec2 linear_offset, Q32 angular_offset) {
+  Command c = joint_command(CommandType::set_joint_offsets, joint);
+  c.vector = linear_offset;
+  c.scalar = angular_offset;
+  return c;
+}
+
+Command make_set_joint_break_thresholds(JointRef joint, Q32 force, Q32 torque) {
+  Command c = joint_command(CommandType::set_joint_break_thresholds, joint);
+  c.scalar = force;
+  c.scalar2 = torque;
+  return c;
+}
+
 Status apply_joint_command(WorldId world, const Command& c) {
   if (c.type == CommandType::create_joint) return create_from_spec(world, c.joint_spec);
   if (c.joint.generation == 0 || c.joint.index == UINT32_MAX) {
@@ -203,60 +331,26 @@ Status apply_joint_command(WorldId world, const Command& c) {
     case CommandType::set_joint_target: return joint_set_target(j, c.vector);
     case CommandType::set_joint_length: return joint_set_length(j, c.scalar);
     case CommandType::set_joint_limits: return joint_set_limits(j, c.scalar, c.scalar2);
+    case CommandType::enable_joint_motor: return joint_enable_motor(j, c.flag);
+    case CommandType::set_joint_max_motor_force: return joint_set_max_motor_force(j, c.scalar);
+    case CommandType::enable_joint_limit: return joint_enable_limit(j, c.flag);
+    case CommandType::enable_joint_spring: return joint_enable_spring(j, c.flag);
+    case CommandType::set_joint_spring: return joint_set_spring(j, c.scalar, c.scalar2);
+    case CommandType::set_joint_offsets: return joint_set_offsets(j, c.vector, c.scalar);
+    case CommandType::set_joint_break_thresholds: return joint_set_break_thresholds(j, c.scalar, c.scalar2);
     default: break;
   }
   return Status{StatusCode::invalid_argument, "not a joint command"};
 }
 
 void encode_joint_command(ByteWriter& w, const Command& c) {
-  if (c.type == CommandType::create_joint) {
-    const JointSpec& s = c.joint_spec;
-    w.u8(static_cast<uint8_t>(static_cast<int32_t>(s.type)));
-    write_body_ref(w, s.body_a);
-    write_body_ref(w, s.body_b);
-    w.vec2(s.local_anchor_a);
-    w.vec2(s.local_anchor_b);
-    w.boolean(s.collide_connected);
-    w.q32(s.break_force);
-    w.q32(s.break_torque);
-    w.u64(s.user_data);
-    w.vec2(s.local_axis);
-    w.q32(s.reference_angle);
-    w.boolean(s.enable_spring);
-    w.boolean(s.enable_limit);
-    w.boolean(s.enable_motor);
-    w.q32(s.hertz);
-    w.q32(s.damping_ratio);
-    w.q32(s.angular_hertz);
-    w.q32(s.angular_damping_ratio);
-    w.q32(s.length);
-    w.q32(s.lower);
-    w.q32(s.upper);
-    w.q32(s.motor_speed);
-    w.q32(s.motor_force);
-    w.vec2(s.target);
-    w.q32(s.angular_offset);
-    w.q32(s.max_force);
-    w.q32(s.max_torque);
-    w.q32(s.correction_factor);
-    return;
-  }
-  write_joint_ref(w, c.joint);
-  switch (c.type) {
-    case CommandType::set_joint_motor_speed:
-    case CommandType::set_joint_length: w.q32(c.scalar); break;
-    case CommandType::set_joint_target: w.vec2(c.vector); break;
-    case CommandType::set_joint_limits:
-      w.q32(c.scalar);
-      w.q32(c.scalar2);
-      break;
-    default: break;
-  }
+  if (c.type == CommandType::create_joint) w.u8(static_cast<uint8_t>(static_cast<int32_t>(c.joint_spec.type)));
+  Writer writer{w};
+  visit_joint_fields(writer, c);
 }
 
 bool decode_joint_command(ByteReader& r, Command* out) {
   if (out->type == CommandType::create_joint) {
-    JointSpec& s = out->joint_spec;
     const size_t at = r.offset();
     const uint8_t type = r.u8("joint type");
     if (!r.ok()) return false;
@@ -264,60 +358,22 @@ bool decode_joint_command(ByteReader& r, Command* out) {
       r.fail_at(at, "expected " + r.describe_what("joint type") + " 0..6, got " + std::to_string(type));
       return false;
     }
-    s.type = static_cast<JointType>(type);
-    s.body_a = read_body_ref(r, "body_a.index", "body_a.generation");
-    s.body_b = read_body_ref(r, "body_b.index", "body_b.generation");
-    s.local_anchor_a = r.vec2("local_anchor_a.x", "local_anchor_a.y");
-    s.local_anchor_b = r.vec2("local_anchor_b.x", "local_anchor_b.y");
-    s.collide_connected = r.boolean("collide_connected");
-    s.break_force = r.q32("break_force");
-    s.break_torque = r.q32("break_torque");
-    s.user_data = r.u64("user_data");
-    s.local_axis = r.vec2("local_axis.x", "local_axis.y");
-    s.reference_angle = r.q32("reference_angle");
-    s.enable_spring = r.boolean("enable_spring");
-    s.enable_limit = r.boolean("enable_limit");
-    s.enable_motor = r.boolean("enable_motor");
-    s.hertz = r.q32("hertz");
-    s.damping_ratio = r.q32("damping_ratio");
-    s.angular_hertz = r.q32("angular_hertz");
-    s.angular_damping_ratio = r.q32("angular_damping_ratio");
-    s.length = r.q32("length");
-    s.lower = r.q32("lower");
-    s.upper = r.q32("upper");
-    s.motor_speed = r.q32("motor_speed");
-    s.motor_force = r.q32("motor_force");
-    s.target = r.vec2("target.x", "target.y");
-    s.angular_offset = r.q32("angular_offset");
-    s.max_force = r.q32("max_force");
-    s.max_torque = r.q32("max_torque");
-    s.correction_factor = r.q32("correction_factor");
-    return r.ok();
+    out->joint_spec.type = static_cast<JointType>(type);
   }
-  out->joint = read_joint_ref(r);
-  switch (out->type) {
-    case CommandType::set_joint_motor_speed: out->scalar = r.q32("motor_speed"); break;
-    case CommandType::set_joint_length: out->scalar = r.q32("length"); break;
-    case CommandType::set_joint_target: out->vector = r.vec2("target.x", "target.y"); break;
-    case CommandType::set_joint_limits:
-      out->scalar = r.q32("lower");
-      out->scalar2 = r.q32("upper");
-      break;
-    default: break;
-  }
+  Reader reader{r};
+  visit_joint_fields(reader, *out);
   return r.ok();
 }
 
 bool equal_joint_command(const Command& a, const Command& b) {
-  switch (a.type) {
-    case CommandType::create_joint: return a.joint_spec == b.joint_spec;
-    case CommandType::destroy_joint: return a.joint == b.joint;
-    case CommandType::set_joint_motor_speed:
-    case CommandType::set_joint_length: return a.joint == b.joint && a.scalar == b.scalar;
-    case CommandType::set_joint_target: return a.joint == b.joint && a.vector == b.vector;
-    case CommandType::set_joint_limits: return a.joint == b.joint && a.scalar == b.scalar && a.scalar2 == b.scalar2;
-    default: return false;
-  }
+  // Equal when the fields the type uses are: their encodings (one field
+  // list, visit_joint_fields) are the same bytes.
+  if (a.type != b.type || !is_joint_command(a.type)) return false;
+  std::vector<uint8_t> ea, eb;
+  ByteWriter wa(&ea), wb(&eb);
+  encode_joint_command(wa, a);
+  encode_joint_command(wb, b);
+  return ea == eb;
 }
 
 }  // namespace tandem

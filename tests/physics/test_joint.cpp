@@ -439,12 +439,13 @@ TEST_CASE("joint: ragdolls piled in a box for 20 s stay together and inside", "[
   WARN(ragdolls << " ragdolls (" << links.size() << " joints) in a box for " << steps / 60
                 << " s: worst joint separation " << 1000.0 * worst << " mm (during the impacts), "
                 << 1000.0 * resting << " mm over the last 5 s (piled at rest)");
-  // Stated figures: soft joints at the default joint_hertz 60 (Box2D v3's
-  // joint softness) stretch by about a/(2π·60)² under an acceleration a, so
-  // the light forearms and shins of a falling pile separate by several
-  // centimetres for a few steps at impact; at rest the pile holds within 1 cm.
-  CHECK(worst < 0.08);
-  CHECK(resting < 0.01);
+  // Stated figures (the issue asks < 1 cm): the soft joints stretch at the
+  // impacts, and the rigid position pass (joint_solver.cpp) closes every
+  // revolute gap beyond its 3 mm slop once per step, after continuous
+  // collision. Measured: 3.3 mm at the impacts, 3.0 mm at rest (61 mm and
+  // 8.3 mm with the soft joints alone).
+  CHECK(worst < 0.01);
+  CHECK(resting < 0.004);
   CHECK_FALSE(escaped);
 }
 
@@ -493,6 +494,33 @@ TEST_CASE("joint: joined bodies sleep together and wake together", "[physics][jo
   REQUIRE(world_step(world.id, k_dt).ok());
   CHECK(body_is_awake(a));
   CHECK(body_is_awake(b));
+}
+
+TEST_CASE("joint: a body joined to a moving kinematic body never falls asleep", "[physics][joint]") {
+  // A ball pinned at the centre of a slowly turning kinematic disc barely
+  // moves (below the sleep tolerances), but the joint drives it: it must
+  // stay awake for as long as the disc turns, and may sleep once it stops.
+  ScopedWorld world;
+  BodyDef kd = default_body_def();
+  kd.type = BodyType::kinematic_body;
+  kd.angular_velocity = 0.5_q32;
+  const Result<BodyId> disc = create_body(world.id, kd);
+  REQUIRE(disc.ok());
+  REQUIRE(create_circle_shape(disc.value, default_shape_def(), Circle{{}, 1_q32}).ok());
+  const BodyId ball = add_ball(world.id, Vec2{}, 0.1_q32, 1_q32, true);
+  RevoluteJointDef rd = default_revolute_joint_def();
+  rd.base.body_a = disc.value;
+  rd.base.body_b = ball;
+  REQUIRE(create_revolute_joint(world.id, rd).ok());
+  int asleep_steps = 0;
+  for (int i = 0; i < 180; ++i) {
+    REQUIRE(world_step(world.id, k_dt).ok());
+    if (!body_is_awake(ball)) ++asleep_steps;
+  }
+  CHECK(asleep_steps == 0);
+  REQUIRE(body_set_angular_velocity(disc.value, 0_q32).ok());
+  for (int i = 0; i < 120; ++i) REQUIRE(world_step(world.id, k_dt).ok());
+  CHECK_FALSE(body_is_awake(ball));  // the disc stopped: the ball sleeps again
 }
 
 TEST_CASE("joint: destroying a body destroys its joints and reports them at the next step", "[physics][joint]") {

@@ -612,3 +612,47 @@ TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "
   CHECK(find_world(w.id)->contacts.size() > 20u);
   CHECK(later == 0);
 }
+
+TEST_CASE("world_step makes no heap allocation when joints break", "[physics][world][joint]") {
+  // A row of balls hanging from a ceiling on breakable revolute joints: once
+  // warmed up, a pull breaks them inside counted steps (joint events, the
+  // freed slots and the collide-connected filter all use room made when the
+  // joints were created).
+  ScopedWorld w;
+  BodyDef cd = default_body_def();
+  cd.position = {0_q32, 10_q32};
+  const BodyId ceiling = create_body(w.id, cd).value;
+  std::vector<BodyId> balls;
+  std::vector<JointId> joints;
+  for (int k = 0; k < 8; ++k) {
+    const BodyId b = make_dynamic(w.id, {Q32::from_int(k), 9_q32});
+    add_circle(b, 0.25_q32);
+    RevoluteJointDef rd = default_revolute_joint_def();
+    rd.base.body_a = ceiling;
+    rd.base.body_b = b;
+    rd.base.local_anchor_a = body_local_point(ceiling, {Q32::from_int(k), 10_q32});
+    rd.base.local_anchor_b = body_local_point(b, {Q32::from_int(k), 10_q32});
+    rd.base.break_force = 200_q32;
+    const Result<JointId> j = create_revolute_joint(w.id, rd);
+    REQUIRE(j.ok());
+    joints.push_back(j.value);
+    balls.push_back(b);
+  }
+  for (int k = 0; k < 30; ++k) REQUIRE(world_step(w.id, k_dt).ok());
+  REQUIRE(world_counters(w.id).joint_count == 8);
+  int64_t allocations = 0;
+  int events = 0;
+  for (int k = 0; k < 8; ++k) {
+    REQUIRE(body_apply_force_to_center(balls[static_cast<size_t>(k)], {0_q32, -100000_q32}, true).ok());
+    g_allocation_count = 0;
+    g_count_allocations = true;
+    const StepResult r = world_step(w.id, k_dt);
+    g_count_allocations = false;
+    REQUIRE(r.ok());
+    allocations += g_allocation_count.load();
+    events += static_cast<int>(world_joint_events(w.id).value.size());
+  }
+  CHECK(world_counters(w.id).joint_count == 0);
+  CHECK(events == 8);
+  CHECK(allocations == 0);
+}

@@ -168,7 +168,7 @@ TEST_CASE("malformed commands are refused naming what was expected", "[replay][c
     ByteReader r(bytes);
     std::vector<Command> out;
     REQUIRE_FALSE(decode_commands(r, &out));
-    CHECK(r.error() == "offset 4: expected command type 1..19, got 99");
+    CHECK(r.error() == "offset 4: expected command type 1..26, got 99");
   }
   SECTION("a 4 GB payload length is refused before allocating") {
     const std::vector<uint8_t> bytes{13, 0xFF, 0xFF, 0xFF, 0xFF, 1, 2, 3};

@@ -52,6 +52,23 @@ tandem_replay_cli_test(record-bridge 0 "record|scenes/bridge.json|-o|${out}/brid
 tandem_replay_cli_test(replay-bridge-matches-run 0 "replay|${out}/bridge.tnr|--quiet"
   OUT "^final tick 60  hash 0x[0-9a-f]+\n$" SAME "run|scenes/bridge.json|--ticks|60|--quiet" REQUIRES replay_bridge)
 
+# The bundled joint scenes: each recorded past its scripted joint inputs
+# (motor changes, rope reeling, the hook's release), replayed to the bit of
+# `tandem run` and verified tick by tick.
+foreach(scene_ticks pendulum:120 chain50:120 ragdolls:180 car:750 grappling_hook:500)
+  string(REPLACE ":" ";" pair ${scene_ticks})
+  list(GET pair 0 scene)
+  list(GET pair 1 ticks)
+  tandem_replay_cli_test(record-${scene} 0 "record|scenes/${scene}.json|-o|${out}/${scene}.tnr|--ticks|${ticks}|--keyframe-every|60|--quiet"
+    OUT "^final tick ${ticks}  hash 0x[0-9a-f]+\n$" SETUP replay_${scene})
+  tandem_replay_cli_test(replay-${scene}-matches-run 0 "replay|${out}/${scene}.tnr|--quiet"
+    OUT "^final tick ${ticks}  hash 0x[0-9a-f]+\n$" SAME "run|scenes/${scene}.json|--ticks|${ticks}|--quiet"
+    REQUIRES replay_${scene})
+  tandem_replay_cli_test(verify-${scene} 0 "verify|${out}/${scene}.tnr"
+    OUT "ticks re-simulated: ${ticks}, tick hashes checked: ${ticks}, .*\nOK: every recorded hash matches"
+    REQUIRES replay_${scene})
+endforeach()
+
 # The replay reproduces `tandem run` of the same scene, to the bit.
 tandem_replay_cli_test(replay-stack-matches-run 0 "replay|${out}/stack.tnr|--quiet"
   OUT "^final tick 60  hash 0x[0-9a-f]+\n$" SAME "run|scenes/stack.json|--ticks|60|--quiet" REQUIRES replay_stack)

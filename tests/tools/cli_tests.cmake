@@ -76,6 +76,12 @@ tandem_cli_test(render-one 0 "render|scenes/stack.json|--tick|30|-o|${tandem_cli
   EXISTS "${tandem_cli_out}/one/stack-000030.png|${tandem_cli_out}/one/stack-000030.svg")
 tandem_cli_test(render-every 0 "render|scenes/dominoes.json|--every|20|--ticks|60|-o|${tandem_cli_out}/every|--sheet|--size|320x200"
   EXISTS "${tandem_cli_out}/every/dominoes-000000.png|${tandem_cli_out}/every/dominoes-000060.png|${tandem_cli_out}/every/dominoes-sheet.png")
+# Every bundled joint scene renders with its joints drawn (a contact sheet of 4 frames).
+foreach(scene pendulum chain50 ragdolls car grappling_hook)
+  tandem_cli_test(render-${scene} 0 "render|scenes/${scene}.json|--every|40|--ticks|120|-o|${tandem_cli_out}/${scene}|--sheet|--size|320x200"
+    EXISTS "${tandem_cli_out}/${scene}/${scene}-000000.png|${tandem_cli_out}/${scene}/${scene}-000120.png|${tandem_cli_out}/${scene}/${scene}-sheet.png")
+  tandem_cli_test(run-${scene} 0 "run|scenes/${scene}.json|--ticks|60|--quiet" OUT "^final tick 60  hash 0x[0-9a-f]+\n$")
+endforeach()
 tandem_cli_test(render-no-out 2 "render|scenes/stack.json" ERR "--out is required")
 tandem_cli_test(render-bad-size 2 "render|scenes/stack.json|-o|${tandem_cli_out}/bad|--size|huge" ERR "--size: expected WIDTHxHEIGHT")
 tandem_cli_test(render-tick-and-every 2 "render|scenes/stack.json|-o|${tandem_cli_out}/bad|--tick|3|--every|2" ERR "excludes")

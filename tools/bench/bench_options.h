@@ -14,8 +14,9 @@ namespace tandem::bench {
 inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default) {
   o->peers = peers_default;
   app.add_option("scenes", o->scenes,
-                 "scenes: circles-N (N or Nk), pyramid-B, rain-N; default circles-1k..32k, pyramid-20, pyramid-100, "
-                 "rain-4000");
+                 "scenes: circles-N (N or Nk), pyramid-B, rain-N, large_pyramid, many_pyramids, smash, joint_grid[-N], "
+                 "tumbler[-G], spinner[-N]; default circles-1k..32k, pyramid-20, pyramid-100, rain-4000, many_pyramids, "
+                 "smash, joint_grid, tumbler");
   app.add_option("--runs", o->runs, "runs per scene and engine (median, min-max)")->check(CLI::Range(1, 1000));
   app.add_option("--runs-large", o->runs_large, "runs for scenes of more than 4000 bodies (default: --runs)")
       ->check(CLI::Range(1, 1000));

@@ -4,7 +4,8 @@
 // restitution threshold 1 m/s) with the scene's gravity, sleeping off (on for
 // a scene with `sleep`: smash, whose bodies may start asleep) and the
 // chosen WorldDef::broad_phase. Bodies and shapes are made from the spec's
-// Q32 values as they are. Doubles appear only in the probes (harness.h).
+// Q32 values as they are; joints (revolute) after every body, anchored at
+// the spec's world point. Doubles appear only in the probes (harness.h).
 #include <chrono>
 #include <cmath>
 
@@ -114,8 +115,29 @@ RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup
     sd.friction = s.friction;
     sd.restitution = s.restitution;
     sd.density = s.density;
+    if (!s.self_collide) {  // joint_grid: on layer 2, colliding with every layer but 2
+      sd.filter.category_bits = 2;
+      sd.filter.mask_bits = ~uint64_t{2};
+    }
+    for (const BoxPart& part : s.boxes) {
+      Polygon box;
+      if (!make_offset_box(part.half_width, part.half_height, Vec2{part.cx, part.cy}, Q32{}, Q32{}, &box).ok) {
+        result.error = "make_offset_box (body " + std::to_string(i) + ") refused";
+        (void)destroy_world(w.value);
+        return result;
+      }
+      const Result<ShapeId> part_shape = create_polygon_shape(b.value, sd, box);
+      if (!part_shape.ok()) return fail("create box part", part_shape.status, i);
+    }
+    for (const SegmentPart& part : s.segments) {
+      const Result<ShapeId> part_shape =
+          create_segment_shape(b.value, sd, Segment{{part.x1, part.y1}, {part.x2, part.y2}});
+      if (!part_shape.ok()) return fail("create segment part", part_shape.status, i);
+    }
     Result<ShapeId> sh;
     switch (s.shape) {
+      case ShapeKind::none:
+        break;
       case ShapeKind::circle:
         sh = create_circle_shape(b.value, sd, Circle{{}, s.radius});
         break;
@@ -127,7 +149,7 @@ RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup
         break;
       case ShapeKind::box: {
         Polygon box;
-        const Status gs = make_box(s.half_width, s.half_height, &box);
+        const Status gs = make_offset_box(s.half_width, s.half_height, Vec2{}, Q32{}, s.rounding, &box);
         if (!gs.ok()) {
           result.error = "make_box (body " + std::to_string(i) + ") refused";
           (void)destroy_world(w.value);
@@ -137,8 +159,25 @@ RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup
         break;
       }
     }
-    if (!sh.ok()) return fail("create shape", sh.status, i);
+    if (s.shape != ShapeKind::none && !sh.ok()) return fail("create shape", sh.status, i);
     bodies.push_back(b.value);
+  }
+  for (size_t i = 0; i < scene.joints.size(); ++i) {
+    const RevoluteSpec& j = scene.joints[i];
+    RevoluteJointDef rd = default_revolute_joint_def();
+    rd.base.body_a = bodies[static_cast<size_t>(j.a)];
+    rd.base.body_b = bodies[static_cast<size_t>(j.b)];
+    rd.base.local_anchor_a = body_local_point(rd.base.body_a, Vec2{j.x, j.y});
+    rd.base.local_anchor_b = body_local_point(rd.base.body_b, Vec2{j.x, j.y});
+    rd.enable_motor = j.motor;
+    rd.motor_speed = j.motor_speed;
+    rd.max_motor_torque = j.max_motor_torque;
+    const Result<JointId> joint = create_revolute_joint(w.value, rd);
+    if (!joint.ok()) {
+      result.error = "create_revolute_joint (joint " + std::to_string(i) + "): " + joint.status.message;
+      (void)destroy_world(w.value);
+      return result;
+    }
   }
   probe(scene, bodies, false, &result.quality);
   const Q32 dt = time_step();

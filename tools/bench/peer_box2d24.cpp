@@ -62,7 +62,25 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
     fd.friction = f32(s.friction);
     fd.restitution = f32(s.restitution);
     fd.density = f32(s.density);
+    if (!s.self_collide) {  // joint_grid: category 2, mask ~2 (2.4's bits are 16-bit)
+      fd.filter.categoryBits = 2;
+      fd.filter.maskBits = static_cast<uint16>(~2u);
+    }
+    for (const BoxPart& part : s.boxes) {
+      b2PolygonShape poly;
+      poly.SetAsBox(f32(part.half_width), f32(part.half_height), b2Vec2(f32(part.cx), f32(part.cy)), 0.0f);
+      fd.shape = &poly;
+      body->CreateFixture(&fd);
+    }
+    for (const SegmentPart& part : s.segments) {
+      b2EdgeShape edge;
+      edge.SetTwoSided(b2Vec2(f32(part.x1), f32(part.y1)), b2Vec2(f32(part.x2), f32(part.y2)));
+      fd.shape = &edge;
+      body->CreateFixture(&fd);
+    }
     switch (s.shape) {
+      case ShapeKind::none:
+        break;
       case ShapeKind::circle: {
         b2CircleShape circle;
         circle.m_radius = f32(s.radius);
@@ -108,6 +126,14 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
     }
     bodies.push_back(body);
   }
+  for (const RevoluteSpec& j : scene.joints) {
+    b2RevoluteJointDef jd;
+    jd.Initialize(bodies[static_cast<size_t>(j.a)], bodies[static_cast<size_t>(j.b)], b2Vec2(f32(j.x), f32(j.y)));
+    jd.enableMotor = j.motor;
+    jd.motorSpeed = f32(j.motor_speed);
+    jd.maxMotorTorque = f32(j.max_motor_torque);
+    world->CreateJoint(&jd);
+  }
   probe(scene, bodies, false, &result.quality);
   const float dt = static_cast<float>(to_double(time_step()));
   constexpr int32_t velocity_iterations = 8, position_iterations = 3;
@@ -139,7 +165,8 @@ void spec_mass(const BodySpec& b, double* mass, double* inertia) {
       return;
     }
     case ShapeKind::segment:
-      break;  // no area: static only
+    case ShapeKind::none:
+      break;  // no area (static only), or no shape
     case ShapeKind::capsule: {
       const double r = to_double(b.radius), hl = to_double(b.half_width), len = 2 * hl;
       const double m_rect = rho * len * 2 * r;

@@ -11,7 +11,10 @@
 // 2 here). Shapes: b2MakeBox, b2Circle, b2Capsule and b2Segment, density,
 // friction and restitution from the spec; v3 mixes friction as
 // sqrt(a·b) and restitution as max(a, b), as Tandem does. v3 works in
-// binary32: the spec's exact doubles are rounded once to float.
+// binary32: the spec's exact doubles are rounded once to float. Joints:
+// b2DefaultRevoluteJointDef() (v3's joint softness defaults) anchored at the
+// spec's world point; the spinner's ring is 360 segments where v3's own
+// benchmark has one loop chain.
 //
 // The include path of this file alone points at v3's headers (Box2D 2.4's
 // are also <box2d/box2d.h>); v3's API is C, so its symbols cannot collide
@@ -81,14 +84,29 @@ RunResult run_box2d3(int32_t workers, const SceneSpec& scene, int32_t warmup, in
     sd.density = f32(s.density);
     sd.material.friction = f32(s.friction);
     sd.material.restitution = f32(s.restitution);
+    if (!s.self_collide) {  // joint_grid: v3's category 2, mask ~2
+      sd.filter.categoryBits = 2;
+      sd.filter.maskBits = ~uint64_t{2};
+    }
+    for (const BoxPart& part : s.boxes) {
+      const b2Polygon box = b2MakeOffsetBox(f32(part.half_width), f32(part.half_height),
+                                            b2Vec2{f32(part.cx), f32(part.cy)}, b2Rot_identity);
+      b2CreatePolygonShape(body, &sd, &box);
+    }
+    for (const SegmentPart& part : s.segments) {
+      const b2Segment segment{{f32(part.x1), f32(part.y1)}, {f32(part.x2), f32(part.y2)}};
+      b2CreateSegmentShape(body, &sd, &segment);
+    }
     switch (s.shape) {
+      case ShapeKind::none:
+        break;
       case ShapeKind::circle: {
         const b2Circle circle{{0.0f, 0.0f}, f32(s.radius)};
         b2CreateCircleShape(body, &sd, &circle);
         break;
       }
       case ShapeKind::box: {
-        const b2Polygon box = b2MakeBox(f32(s.half_width), f32(s.half_height));
+        const b2Polygon box = b2MakeRoundedBox(f32(s.half_width), f32(s.half_height), f32(s.rounding));
         b2CreatePolygonShape(body, &sd, &box);
         break;
       }
@@ -104,6 +122,20 @@ RunResult run_box2d3(int32_t workers, const SceneSpec& scene, int32_t warmup, in
       }
     }
     bodies.push_back(body);
+  }
+  for (const RevoluteSpec& j : scene.joints) {
+    b2RevoluteJointDef jd = b2DefaultRevoluteJointDef();
+    jd.base.bodyIdA = bodies[static_cast<size_t>(j.a)];
+    jd.base.bodyIdB = bodies[static_cast<size_t>(j.b)];
+    b2Pos anchor;
+    anchor.x = f32(j.x);
+    anchor.y = f32(j.y);
+    jd.base.localFrameA.p = b2Body_GetLocalPoint(jd.base.bodyIdA, anchor);
+    jd.base.localFrameB.p = b2Body_GetLocalPoint(jd.base.bodyIdB, anchor);
+    jd.enableMotor = j.motor;
+    jd.motorSpeed = f32(j.motor_speed);
+    jd.maxMotorTorque = f32(j.max_motor_torque);
+    b2CreateRevoluteJoint(world, &jd);
   }
   probe(scene, bodies, false, &result.quality);
   const float dt = static_cast<float>(to_double(time_step()));

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "fixed/fixed_math.h"
+#include "fixed/vec2.h"
 
 namespace tandem::bench {
 namespace {
@@ -274,6 +275,168 @@ SceneSpec make_smash(int32_t columns, int32_t rows) {
   return s;
 }
 
+SceneSpec make_joint_grid(int32_t n) {
+  SceneSpec s;
+  s.name = n == 100 ? "joint_grid" : "joint_grid-" + std::to_string(n);
+  s.family = "joint_grid";
+  s.size = n;
+  s.gravity_y = q_int(-10);
+  s.warmup_steps = 0;
+  s.timed_steps = 500;
+  const Q32 half = q_ratio(1, 2);
+  for (int32_t k = 0; k < n; ++k) {
+    for (int32_t i = 0; i < n; ++i) {
+      BodySpec b;
+      b.dynamic = !(k >= n / 2 - 3 && k <= n / 2 + 3 && i == 0);
+      b.shape = ShapeKind::circle;
+      b.x = q_int(k);
+      b.y = q_int(-i);
+      b.radius = q_ratio(2, 5);
+      b.friction = q_ratio(3, 5);
+      b.density = Q32::one();
+      b.self_collide = false;
+      const int32_t index = static_cast<int32_t>(s.bodies.size());
+      if (i > 0) s.joints.push_back(RevoluteSpec{index - 1, index, b.x, b.y + half, false, {}, {}});
+      // v3 also joins the static anchors to each other (a joint that does
+      // nothing); Tandem refuses a joint between two static bodies.
+      const bool both_static = !b.dynamic && !s.bodies[static_cast<size_t>(index - n)].dynamic;
+      if (k > 0 && !both_static) s.joints.push_back(RevoluteSpec{index - n, index, b.x - half, b.y, false, {}, {}});
+      if (b.dynamic) ++s.dynamic_count;
+      s.bodies.push_back(b);
+    }
+  }
+  // The grid hangs and swings below its anchors; it never leaves this box.
+  s.container.min_x = -2.0 * n;
+  s.container.max_x = 3.0 * n;
+  s.container.min_y = -2.5 * n;
+  s.container.max_y = 1.0 * n;
+  return s;
+}
+
+SceneSpec make_tumbler(int32_t grid) {
+  SceneSpec s;
+  s.name = grid == 45 ? "tumbler" : "tumbler-" + std::to_string(grid);
+  s.family = "tumbler";
+  s.size = grid;
+  s.gravity_y = q_int(-10);
+  s.warmup_steps = 0;
+  s.timed_steps = 750;
+  BodySpec ground;
+  ground.shape = ShapeKind::none;
+  s.bodies.push_back(ground);
+  BodySpec drum;
+  drum.dynamic = true;
+  drum.shape = ShapeKind::none;
+  drum.y = q_int(10);
+  drum.friction = q_ratio(3, 5);
+  drum.density = q_int(50);
+  const Q32 half = q_ratio(1, 2);
+  drum.boxes = {BoxPart{q_int(10), {}, half, q_int(10)}, BoxPart{q_int(-10), {}, half, q_int(10)},
+                BoxPart{{}, q_int(10), q_int(10), half}, BoxPart{{}, q_int(-10), q_int(10), half}};
+  s.bodies.push_back(drum);
+  s.dynamic_count = 1;
+  // 25°/s as v3 writes it: (π/180)·25 rad/s.
+  s.joints.push_back(RevoluteSpec{0, 1, {}, q_int(10), true, k_pi * q_int(25) / q_int(180), q_int(100000000)});
+  const Q32 step = q_ratio(2, 5);
+  const Q32 start = q_int(-grid) * q_ratio(1, 5);
+  for (int32_t i = 0; i < grid; ++i) {
+    for (int32_t j = 0; j < grid; ++j) {
+      BodySpec b;
+      b.dynamic = true;
+      b.shape = ShapeKind::box;
+      b.x = start + q_int(j) * step;
+      b.y = start + q_int(10) + q_int(i) * step;
+      b.half_width = q_ratio(1, 8);
+      b.half_height = q_ratio(1, 8);
+      b.friction = q_ratio(3, 5);
+      b.density = Q32::one();
+      s.bodies.push_back(b);
+      ++s.dynamic_count;
+    }
+  }
+  // Inside the drum (its corners reach 10·√2 ≈ 14.2 m from (0, 10)).
+  s.container.min_x = -15;
+  s.container.max_x = 15;
+  s.container.min_y = -5;
+  s.container.max_y = 25;
+  return s;
+}
+
+SceneSpec make_spinner(int32_t count) {
+  SceneSpec s;
+  s.name = count == 6076 ? "spinner" : "spinner-" + std::to_string(count);
+  s.family = "spinner";
+  s.size = count;
+  s.gravity_y = q_int(-10);
+  s.warmup_steps = 0;
+  s.timed_steps = 500;
+  constexpr int32_t k_points = 360;
+  BodySpec ring;
+  ring.shape = ShapeKind::none;
+  ring.friction = q_ratio(1, 10);
+  ring.density = Q32::one();
+  std::vector<Vec2> points;
+  for (int32_t i = 0; i < k_points; ++i) {
+    const auto sc = sincos(-k_two_pi * q_int(i) / q_int(k_points));
+    points.push_back(Vec2{q_int(40) * sc.cos, q_int(40) * sc.sin + q_int(32)});
+  }
+  for (int32_t i = 0; i < k_points; ++i) {
+    const Vec2 a = points[static_cast<size_t>(i)], b = points[static_cast<size_t>((i + 1) % k_points)];
+    ring.segments.push_back(SegmentPart{a.x, a.y, b.x, b.y});
+  }
+  s.bodies.push_back(ring);
+  BodySpec bar;
+  bar.dynamic = true;
+  bar.shape = ShapeKind::box;
+  bar.y = q_int(12);
+  bar.half_width = q_ratio(2, 5);
+  bar.half_height = q_int(20);
+  bar.rounding = q_ratio(1, 5);
+  bar.friction = Q32{};
+  bar.density = Q32::one();
+  s.bodies.push_back(bar);
+  s.dynamic_count = 1;
+  s.joints.push_back(RevoluteSpec{0, 1, {}, q_int(12), true, q_int(5), q_int(100000000)});
+  Q32 x = q_int(-23), y = q_int(2);
+  for (int32_t i = 0; i < count; ++i) {
+    BodySpec b;
+    b.dynamic = true;
+    b.x = x;
+    b.y = y;
+    b.friction = q_ratio(1, 10);
+    b.restitution = q_ratio(1, 10);
+    b.density = q_ratio(1, 4);
+    switch (i % 3) {
+      case 0:
+        b.shape = ShapeKind::capsule;
+        b.half_width = q_ratio(1, 4);
+        b.radius = q_ratio(1, 4);
+        break;
+      case 1:
+        b.shape = ShapeKind::circle;
+        b.radius = q_ratio(7, 20);
+        break;
+      default:
+        b.shape = ShapeKind::box;
+        b.half_width = q_ratio(7, 20);
+        b.half_height = q_ratio(7, 20);
+        break;
+    }
+    s.bodies.push_back(b);
+    ++s.dynamic_count;
+    x += q_ratio(1, 2);
+    if (x >= q_int(23)) {
+      x = q_int(-23);
+      y += q_ratio(1, 2);
+    }
+  }
+  s.container.min_x = -41;
+  s.container.max_x = 41;
+  s.container.min_y = -9;
+  s.container.max_y = 73;
+  return s;
+}
+
 bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
   if (name == "large_pyramid") {
     *out = make_pyramid(100);
@@ -313,6 +476,18 @@ bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
     *out = family == "circles" ? make_circles(static_cast<int32_t>(size)) : make_rain(static_cast<int32_t>(size));
     return true;
   }
+  if (family == "joint_grid" || family == "tumbler" || family == "spinner") {
+    const int64_t fallback = family == "joint_grid" ? 100 : family == "tumbler" ? 45 : 6076;
+    const int64_t max = family == "spinner" ? 100000 : 300;
+    if (dash == std::string::npos) size = fallback;
+    if (size < 1 || size > max) {
+      *error = "scene '" + name + "': " + family + " size must be 1…" + std::to_string(max);
+      return false;
+    }
+    const auto n = static_cast<int32_t>(size);
+    *out = family == "joint_grid" ? make_joint_grid(n) : family == "tumbler" ? make_tumbler(n) : make_spinner(n);
+    return true;
+  }
   if (family == "pyramid") {
     if (size < 1 || size > 200) {
       *error = "scene '" + name + "': pyramid base must be 1…200";
@@ -322,13 +497,15 @@ bool make_scene(const std::string& name, SceneSpec* out, std::string* error) {
     return true;
   }
   *error = "scene '" + name + "': unknown family '" + family +
-           "' (circles-N, pyramid-B, rain-N, large_pyramid, many_pyramids, smash)";
+           "' (circles-N, pyramid-B, rain-N, large_pyramid, many_pyramids, smash, joint_grid[-N], tumbler[-G], "
+           "spinner[-N])";
   return false;
 }
 
 std::vector<std::string> default_scene_names() {
   return {"circles-1000", "circles-2000", "circles-4000", "circles-8000",  "circles-16000", "circles-32000",
-          "pyramid-20",   "pyramid-100",  "rain-4000",    "many_pyramids", "smash"};
+          "pyramid-20",   "pyramid-100",  "rain-4000",    "many_pyramids", "smash",
+          "joint_grid",   "tumbler"};
 }
 
 }  // namespace tandem::bench

@@ -50,10 +50,10 @@ const std::vector<std::string> k_generator_pyramid_keys = {"type", "origin", "ba
 const std::vector<std::string> k_generator_random_keys = {"type",     "seed",  "count", "region", "kinds",
                                                           "size_min", "size_max", "speed", "body", "shape",
                                                           "comment"};
-const std::vector<std::string> k_input_common_keys = {"tick", "type", "body", "comment"};
+const std::vector<std::string> k_input_common_keys = {"tick", "type", "body", "joint", "comment"};
 const std::vector<std::string> k_input_value_keys = {"force",    "impulse", "point",    "torque",  "velocity",
                                                      "position", "angle",   "awake",    "enabled", "gravity",
-                                                     "wake"};
+                                                     "wake",     "length",  "limit",    "speed",   "target"};
 const std::vector<std::string> k_joint_keys = {
     "type",          "body_a",         "body_b",   "anchor",        "anchor_a",      "anchor_b",
     "collide_connected", "break_force", "break_torque", "user_data", "axis",          "reference_angle",
@@ -66,6 +66,7 @@ const std::vector<std::string> k_names = {
     "grid", "pyramid", "random", "naive", "sweep_and_prune", "tree",
     "apply_force", "apply_linear_impulse", "apply_torque", "apply_angular_impulse", "set_linear_velocity",
     "set_angular_velocity", "set_transform", "set_awake", "set_enabled", "set_gravity", "destroy_body",
+    "set_joint_length", "set_joint_limits", "set_joint_motor_speed", "set_joint_target", "destroy_joint",
     "revolute", "distance", "rope", "weld", "prismatic", "mouse", "wheel", "motor"};
 
 struct SceneError {
@@ -798,12 +799,13 @@ SceneJoint read_joint(const JsonValue& v, const std::string& path, const std::ve
   return j;
 }
 
-SceneInput read_input(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies) {
+SceneInput read_input(const JsonValue& v, const std::string& path, const std::vector<SceneBody>& bodies,
+                      size_t joint_count) {
   if (v.kind != JsonValue::Kind::object) fail(path, "expected an object, " + got(v));
   static const std::vector<std::string> types = {
       "apply_force",         "apply_linear_impulse", "apply_torque", "apply_angular_impulse", "set_linear_velocity",
       "set_angular_velocity", "set_transform",       "set_awake",    "set_enabled",           "set_gravity",
-      "destroy_body"};
+      "destroy_body",        "set_joint_length",     "set_joint_limits",     "set_joint_motor_speed", "set_joint_target", "destroy_joint"};
   std::string type;
   for (size_t i = 0; i < v.keys.size(); ++i)
     if (v.keys[i] == "type") type = read_enum(v.items[i], path + "/type", types);
@@ -818,10 +820,34 @@ SceneInput read_input(const JsonValue& v, const std::string& path, const std::ve
   else if (type == "set_awake") keys = {"awake"};
   else if (type == "set_enabled") keys = {"enabled"};
   else if (type == "set_gravity") keys = {"gravity"};
+  else if (type == "set_joint_length") keys = {"length"};
+  else if (type == "set_joint_limits") keys = {"limit"};
+  else if (type == "set_joint_motor_speed") keys = {"speed"};
+  else if (type == "set_joint_target") keys = {"target"};
   Obj o(v, path, {&k_input_common_keys, &keys});
   SceneInput in;
   in.path = path;
   in.tick = read_int(o.need("tick"), o.at("tick"), 0, INT64_C(1) << 40);
+  if (type.compare(0, 10, "set_joint_") == 0 || type == "destroy_joint") {
+    // Joint inputs name a joint by its index in "joints": the scene's joints
+    // are the first a fresh world creates, so joint i has the ref {i, 1}.
+    if (o.find("body")) fail(o.at("body"), type + " takes a \"joint\", not a body");
+    if (joint_count == 0) fail(o.at("joint"), "the scene has no joints");
+    const JointRef joint{static_cast<uint32_t>(read_int(o.need("joint"), o.at("joint"), 0,
+                                                        static_cast<int64_t>(joint_count) - 1)),
+                         1};
+    if (type == "set_joint_length") in.command = make_set_joint_length(joint, read_q32(o.need("length"), o.at("length")));
+    else if (type == "set_joint_limits") {
+      const Vec2 l = read_vec2(o.need("limit"), o.at("limit"));
+      in.command = make_set_joint_limits(joint, l.x, l.y);
+    } else if (type == "set_joint_motor_speed")
+      in.command = make_set_joint_motor_speed(joint, read_q32(o.need("speed"), o.at("speed")));
+    else if (type == "set_joint_target")
+      in.command = make_set_joint_target(joint, read_vec2(o.need("target"), o.at("target")));
+    else in.command = make_destroy_joint(joint);
+    return in;
+  }
+  if (o.find("joint")) fail(o.at("joint"), type + " takes no joint");
   if (type == "set_gravity") {
     if (o.find("body")) fail(o.at("body"), "set_gravity takes no body");
     in.command = make_set_gravity(read_vec2(o.need("gravity"), o.at("gravity")));
@@ -901,7 +927,7 @@ Scene read_scene(const JsonValue& root, const SceneLimits& limits) {
   });
   opt(o, "inputs", [&](const JsonValue& v, const std::string& p) {
     const auto& items = read_array(v, p);
-    for (size_t i = 0; i < items.size(); ++i) s.inputs.push_back(read_input(items[i], p + "/" + std::to_string(i), s.bodies));
+    for (size_t i = 0; i < items.size(); ++i) s.inputs.push_back(read_input(items[i], p + "/" + std::to_string(i), s.bodies, s.joints.size()));
   });
   std::stable_sort(s.inputs.begin(), s.inputs.end(),
                    [](const SceneInput& a, const SceneInput& b) { return a.tick < b.tick; });
