@@ -294,29 +294,40 @@ const groups = {
 
 async function bench(page) {
   const dir = mkdtempSync(join(tmpdir(), 'tandem-web-bench-'));
-  const template = JSON.parse(readFileSync(join(args.web, 'scenes/circles.json'), 'utf8'));
+  // circles-1k/4k: the page's own slider scene (circles.json; the box grows to fit the count).
   const scenes = {};
   for (const n of [1000, 4000]) {
-    const s = JSON.parse(JSON.stringify(template));
-    s.generators[0].count = n;
-    scenes[`circles-${n / 1000}k`] = JSON.stringify(s);
+    scenes[`circles-${n / 1000}k`] = await page.evaluate((count) => {
+      const el = document.getElementById('s-count');
+      el.value = String(count);
+      el.dispatchEvent(new Event('input', { bubbles: true }));
+      window.tandemPage.setRunning(false);
+      return window.tandemPage.page.source.text;
+    }, n);
   }
   scenes['pyramid-20'] = readFileSync(join(args.web, 'scenes/pyramid.json'), 'utf8');
-  const ticks = 300;
+  // Sleep off, so every timed step does the full work.
+  for (const k of Object.keys(scenes)) {
+    const s = JSON.parse(scenes[k]);
+    s.world.sleep = false;
+    scenes[k] = JSON.stringify(s);
+  }
+  const ticks = 300, warmup = 20, reps = 5;
   const rows = [];
+  const med = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
   for (const [name, text] of Object.entries(scenes)) {
     const path = join(dir, `${name}.json`);
     writeFileSync(path, text);
-    const web = [], native = [];
+    const web = [], webMean = [], native = [], nativeMean = [];
     let wh = '', nh = '';
-    for (let rep = 0; rep < 3; ++rep) {
-      const w = await page.evaluate(([t, n, k]) => window.tandemPage.bench(t, n, k, 0), [text, `${name}.json`, ticks]);
-      web.push(w.median); wh = w.hash;
-      const r = JSON.parse(tandem(['run', path, '--ticks', String(ticks), '--hash-every', '0', '--json', '-q']).out);
-      native.push(r.step_ms.median); nh = r.final_hash;
+    for (let rep = 0; rep < reps; ++rep) {
+      const w = await page.evaluate(([t, n, k, u]) => window.tandemPage.bench(t, n, k, u), [text, `${name}.json`, ticks, warmup]);
+      web.push(w.median); webMean.push(w.mean); wh = w.hash;
+      const r = JSON.parse(tandem(['run', path, '--ticks', String(ticks + warmup), '--hash-every', '0', '--json', '-q']).out);
+      native.push(r.step_ms.median); nativeMean.push(r.step_ms.mean); nh = r.final_hash;
     }
-    web.sort((a, b) => a - b); native.sort((a, b) => a - b);
-    rows.push({ name, ticks, page_ms: web[1], native_ms: native[1], ratio: web[1] / native[1], same_hash: wh === nh });
+    rows.push({ name, bodies: JSON.parse(text).generators[0].count ?? null, ticks, page_median_ms: med(web), page_mean_ms: med(webMean),
+      native_median_ms: med(native), native_mean_ms: med(nativeMean), ratio: med(web) / med(native), same_final_hash: wh === nh });
   }
   console.log(JSON.stringify({ load: readFileSync('/proc/loadavg', 'utf8').trim(), rows }, null, 1));
   rmSync(dir, { recursive: true });
