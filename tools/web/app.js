@@ -69,6 +69,7 @@ function afterLoad(source, warning = '') {
   $('scene-desc').textContent = replay
     ? `replay: ${page.info.replay_ticks} ticks at ${Math.round(page.info.step_hz)} Hz`
     : (page.info.description || page.info.title || '');
+  $('scene-desc').title = $('scene-desc').textContent;
   setStatus(`${page.info.name}: ${page.info.bodies} bodies, ${page.info.joints} joints, broad phase ${page.info.broad_phase}`);
   updateReadouts();
   render();
@@ -98,6 +99,7 @@ function loadReplayBytes(bytes, name) {
     return false;
   }
   afterLoad({ kind: 'replay', bytes, name }, warning);
+  showFileName(name);
   return true;
 }
 
@@ -105,7 +107,18 @@ function loadReplayBytes(bytes, name) {
 // otherwise scene text.
 function loadBytes(bytes, name) {
   if (page.engine.isReplay(bytes)) return loadReplayBytes(bytes, name);
-  return loadSceneText(new TextDecoder().decode(bytes), name);
+  const ok = loadSceneText(new TextDecoder().decode(bytes), name);
+  if (ok) showFileName(name);
+  return ok;
+}
+
+// The scene menu names a file that is not a bundled scene.
+function showFileName(name) {
+  const o = $('file-option');
+  o.textContent = `file: ${name}`;
+  o.hidden = false;
+  $('scene-select').value = '';
+  o.selected = true;
 }
 
 async function loadBundled(name) {

@@ -47,6 +47,8 @@ struct Current {
   scene::Scene scene;           // Mode::scene
   scene::BuiltScene built;      // Mode::scene (built.world is the world)
   Replay replay;                // Mode::replay
+  bool has_view = false;        // the scene's "view" (a replay: its embedded scene's, if it parses)
+  AABB view;
   WorldId world{};
   int64_t tick = 0;
   Q32 time_step;
@@ -154,6 +156,8 @@ EMSCRIPTEN_KEEPALIVE int tw_load_scene(const char* text, int32_t size, const cha
   g_current.built = std::move(built.value);
   g_current.world = g_current.built.world;
   g_current.time_step = g_current.scene.time_step;
+  g_current.has_view = g_current.scene.has_view;
+  g_current.view = g_current.scene.view;
   return 0;
 }
 
@@ -174,6 +178,12 @@ EMSCRIPTEN_KEEPALIVE int tw_load_replay(const uint8_t* bytes, int32_t size, cons
   g_current.name = name;
   g_current.world = created.value;
   g_current.time_step = replay.header.time_step;
+  if (replay.header.has_scene_bytes) {  // the embedded scene's view, if it parses (as `tandem render`)
+    const std::vector<uint8_t>& text = replay.header.scene_bytes;
+    const Result<scene::Scene> embedded = scene::load_scene_text(
+        std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), name);
+    if (embedded.ok() && embedded.value.has_view) g_current.has_view = true, g_current.view = embedded.value.view;
+  }
   g_current.replay = std::move(replay);
   g_error = info.warning.empty() ? "" : std::string(name) + ": " + info.warning;
   return 0;
@@ -282,8 +292,8 @@ EMSCRIPTEN_KEEPALIVE const double* tw_draw_buffer() { return g_draw.data(); }
 
 /// A JSON object describing the current world: mode, name, title,
 /// description, step_hz, scene ticks, replay ticks, counts (bodies, dynamic
-/// bodies, shapes, joints), gravity (m/s²), broad phase, view (the scene's,
-/// else every shape's AABB within ±1000 m), the dynamic bodies' mean and
+/// bodies, shapes, joints), gravity (m/s²), broad phase, view (the scene's
+/// or a replay's embedded scene's, else every shape's AABB within ±1000 m), the dynamic bodies' mean and
 /// maximum speed (m/s), their circles' count and radius range (m) and their
 /// shapes' mean restitution — binary floating point, display only.
 EMSCRIPTEN_KEEPALIVE const char* tw_info() {
@@ -334,8 +344,8 @@ EMSCRIPTEN_KEEPALIVE const char* tw_info() {
     }
   }
   const bool scene_mode = g_current.mode == Mode::scene;
-  if (scene_mode && g_current.scene.has_view) {
-    const AABB& v = g_current.scene.view;
+  if (g_current.has_view) {
+    const AABB& v = g_current.view;
     lx = d(v.lower.x), ly = d(v.lower.y), ux = d(v.upper.x), uy = d(v.upper.y), any = true;
   }
   if (!any) lx = -10, ly = -10, ux = 10, uy = 10;
