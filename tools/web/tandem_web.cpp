@@ -284,7 +284,10 @@ EMSCRIPTEN_KEEPALIVE int32_t tw_draw(int32_t flags) {
   dd.draw_contact = on_contact;
   dd.draw_aabb = on_aabb;
   const Status s = world_draw(g_current.world, dd);
-  if (!s.ok()) return fail(s.message), 0;
+  if (!s.ok()) {
+    fail(s.message);
+    return 0;
+  }
   return static_cast<int32_t>(g_draw.size());
 }
 /// The buffer tw_draw() filled.
