@@ -9,7 +9,10 @@
 #            cross compilers, qemu-user, pkg-config, plus the ci-cross group
 #   demo     only what building and running `tandem demo` needs
 #   ci-cross the extra cross rows scripts/test.sh runs (aarch64 under qemu,
-#            wasm32-wasi under node)
+#            wasm32-wasi under node), plus the web group
+#   web      the web test page (tools/web): Emscripten, Chromium, and
+#            playwright-core from npm (tools/web/package-lock.json; no browser
+#            download: the tests drive Debian's /usr/bin/chromium)
 #   matrix   everything tools/matrix.sh needs: all of the above plus the
 #            armhf, riscv64 and ppc64le cross compilers and mingw-w64 +
 #            wine for Windows (not in `all`)
@@ -34,17 +37,42 @@ extra=(g++-i686-linux-gnu g++-s390x-linux-gnu qemu-user valgrind libbenchmark-de
 # Cross rows of scripts/test.sh beyond i686/s390x (golden chains only).
 ci_cross=(g++-aarch64-linux-gnu wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32
   libclang-rt-14-dev-wasm32 lld-14 llvm-14 nodejs)
+# The web row of scripts/test.sh (tools/web): Debian's emscripten (3.1.6, with
+# its prebuilt system libraries) and chromium, and npm for playwright-core
+# when node came without it (Debian's nodejs 18 does; nodesource's bundles npm).
+web=(emscripten chromium)
+command -v npm >/dev/null 2>&1 || web+=(npm)
 # The rest of tools/matrix.sh's targets (big; not installed by `all`).
 # (Windows under wine is here rather than in CI: its build is the slowest row.)
 matrix=(g++-arm-linux-gnueabihf g++-riscv64-linux-gnu g++-powerpc64le-linux-gnu g++-mingw-w64-x86-64 wine64)
 
 case "$group" in
-  all) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}") ;;
+  all) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}" "${web[@]}") ;;
   demo) wanted=("${base[@]}" "${libs[@]}") ;;
-  ci-cross) wanted=("${ci_cross[@]}") ;;
-  matrix) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}" "${matrix[@]}") ;;
-  *) echo "usage: $0 [all|demo|ci-cross|matrix]" >&2; exit 2 ;;
+  ci-cross) wanted=("${ci_cross[@]}" "${web[@]}") ;;
+  web) wanted=("${web[@]}") ;;
+  matrix) wanted=("${base[@]}" "${libs[@]}" "${bindings[@]}" "${extra[@]}" "${ci_cross[@]}" "${web[@]}" "${matrix[@]}") ;;
+  *) echo "usage: $0 [all|demo|ci-cross|web|matrix]" >&2; exit 2 ;;
 esac
+
+# playwright-core (the web tests' browser driver) from npm, exactly as
+# tools/web/package-lock.json pins it; never a browser download.
+web_node_modules() {
+  case "$group" in demo) return 0 ;; esac
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/tools/web"
+  [ -f "$dir/package-lock.json" ] || return 0
+  local want have
+  want=$(node -e 'console.log(require(process.argv[1]).packages["node_modules/playwright-core"].version)' \
+    "$dir/package-lock.json" 2>/dev/null || true)
+  have=$(node -e 'console.log(require(process.argv[1]).version)' \
+    "$dir/node_modules/playwright-core/package.json" 2>/dev/null || true)
+  if [ -n "$want" ] && [ "$want" = "$have" ]; then
+    return 0
+  fi
+  echo "setup-deps: npm ci in tools/web (playwright-core)"
+  (cd "$dir" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --ignore-scripts)
+}
 
 missing=()
 for pkg in "${wanted[@]}"; do
@@ -54,6 +82,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup-deps: all ${#wanted[@]} packages present ($group)"
+  web_node_modules
   exit 0
 fi
 
@@ -73,4 +102,5 @@ export DEBIAN_FRONTEND=noninteractive
 "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
 "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
   -o Dpkg::Options::=--force-confdef -o Dpkg::Options::=--force-confold "${missing[@]}"
+web_node_modules
 echo "setup-deps: done"

@@ -15,6 +15,11 @@
 #                    (not in the default list: its build is the slowest; run it by
 #                    name after `scripts/setup-deps.sh matrix`, or use tools/matrix.sh)
 #   wasm32           wasm32-wasi under node; golden chains + fixed golden hash
+#   web              Emscripten (preset emscripten): the web test page's
+#                    module, tested in Debian's Chromium (playwright-core,
+#                    tools/web/tests): every bundled scene's hash chain equals
+#                    the native `tandem run` (build/gcc-release's tandem, built
+#                    here if missing), sliders, replays, error texts
 #   fuzz             clang 14 libFuzzer targets (preset clang-fuzz, tests/fuzz/):
 #                    each runs for a short slice (TANDEM_FUZZ_SLICE seconds,
 #                    default 15) through scripts/fuzz.sh; each target counts
@@ -32,13 +37,13 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 1
 
-all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 wasm32 fuzz)
+all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 wasm32 web fuzz)
 clean=0
 builds=()
 for arg in "$@"; do
   case "$arg" in
     --clean) clean=1 ;;
-    -h|--help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
     *) builds+=("$arg") ;;
   esac
@@ -84,6 +89,10 @@ run_build() {
       build_args=(--target tandem_tests_fixed tandem_tests_golden)
       ctest_args=(-R '^golden/golden chain: [a-z_0-9]+$|^fixed/fixed_math gives the same bits') ;;
     gcc-release) ;;  # the one build that also runs the determinism lint
+    # The web page: its browser tests compare with the native CLI.
+    web)
+      preset=emscripten dir=build/emscripten
+      ctest_args=(-R '^web/') ;;
     # The fuzzers: built from preset clang-fuzz, "tested" by short runs.
     fuzz)
       preset=clang-fuzz dir=build/clang-fuzz
@@ -113,6 +122,14 @@ run_build() {
     echo "[test.sh] $name: build (-j$jobs)"
     if ! cmake --build "$dir" -j "$jobs" "${build_args[@]}"; then
       result="build FAILED"
+    fi
+    # web: the native `tandem` the browser tests compare with.
+    if [ "$result" = ok ] && [ "$name" = web ]; then
+      echo "[test.sh] $name: native tandem (build/gcc-release)"
+      if ! { [ -f build/gcc-release/CMakeCache.txt ] || cmake --preset gcc-release >/dev/null; } ||
+         ! cmake --build build/gcc-release -j "$jobs" --target tandem; then
+        result="build FAILED (native tandem)"
+      fi
     fi
     t_bld=$(( $(now) - t0 ))
     echo "[test.sh] $name: build: ${t_bld} s"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "physics/world.h"
+#include "physics/debug_draw.h"
 
 // Fontconfig (under Cairo's text) keeps its configuration cache until exit
 // on purpose; LeakSanitizer would report it in sanitizer builds.
@@ -45,66 +45,136 @@ struct Mapper {
 
 double d(Q32 v) { return v.to_double(); }
 
-// World point of a local point under a transform (binary floating point: display only).
-void world_point(const Transform& xf, Vec2 p, double* out_x, double* out_y) {
-  const double c = d(xf.q.c), s = d(xf.q.s), px = d(p.x), py = d(p.y);
-  *out_x = d(xf.p.x) + c * px - s * py;
-  *out_y = d(xf.p.y) + s * px + c * py;
+// A Cairo drawer behind world_draw() (physics/debug_draw.h): world points
+// come as Q32 metres and are mapped to pixels here (display only).
+struct Painter {
+  cairo_t* cr;
+  const Mapper& m;
+};
+
+Color state_color(DrawBodyState state) {
+  switch (state) {
+    case DrawBodyState::disabled: return {0.85, 0.85, 0.85};
+    case DrawBodyState::static_body: return {0.55, 0.65, 0.55};
+    case DrawBodyState::kinematic_body: return {0.55, 0.6, 0.9};
+    case DrawBodyState::asleep: return {0.7, 0.7, 0.7};
+    case DrawBodyState::awake: break;
+  }
+  return {0.95, 0.65, 0.35};
 }
 
-void shape_path(cairo_t* cr, const Mapper& m, const ShapeGeometry& g, const Transform& xf) {
-  double x = 0, y = 0;
-  const double rot = std::atan2(d(xf.q.s), d(xf.q.c));
-  switch (g.type) {
-    case ShapeType::circle:
-      world_point(xf, g.circle.center, &x, &y);
-      cairo_new_sub_path(cr);
-      cairo_arc(cr, m.x(x), m.y(y), d(g.circle.radius) * m.scale, 0, 2 * M_PI);
-      break;
-    case ShapeType::capsule: {
-      double x1, y1, x2, y2;
-      world_point(xf, g.capsule.center1, &x1, &y1);
-      world_point(xf, g.capsule.center2, &x2, &y2);
-      const double a = std::atan2(-(y2 - y1), x2 - x1);  // screen angle (y down)
-      const double r = d(g.capsule.radius) * m.scale;
-      cairo_new_sub_path(cr);
-      cairo_arc(cr, m.x(x2), m.y(y2), r, a - M_PI / 2, a + M_PI / 2);
-      cairo_arc(cr, m.x(x1), m.y(y1), r, a + M_PI / 2, a + 3 * M_PI / 2);
-      cairo_close_path(cr);
-      break;
-    }
-    case ShapeType::polygon: {
-      const Polygon& p = g.polygon;
-      cairo_new_sub_path(cr);
-      for (int i = 0; i < p.count; ++i) {
-        world_point(xf, p.vertices[static_cast<size_t>(i)], &x, &y);
-        if (i == 0) cairo_move_to(cr, m.x(x), m.y(y));
-        else cairo_line_to(cr, m.x(x), m.y(y));
-      }
-      cairo_close_path(cr);
-      break;
-    }
-    case ShapeType::segment:
-    case ShapeType::chain_segment: {
-      const Segment& s = g.type == ShapeType::segment ? g.segment : g.chain_segment.segment;
-      world_point(xf, s.point1, &x, &y);
-      cairo_move_to(cr, m.x(x), m.y(y));
-      world_point(xf, s.point2, &x, &y);
-      cairo_line_to(cr, m.x(x), m.y(y));
-      break;
-    }
-    default: break;
+// Fills (solid shapes of enabled bodies, not sensors) and outlines the
+// current path in the body's colours; sensors dashed.
+void finish_shape(cairo_t* cr, const DrawShape& s, bool solid) {
+  const Color c = state_color(s.state);
+  if (s.sensor) {
+    const double dash[] = {4.0, 3.0};
+    cairo_set_dash(cr, dash, 2, 0);
   }
-  (void)rot;
+  if (solid && !s.sensor && s.state != DrawBodyState::disabled) {
+    cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.85);
+    cairo_fill_preserve(cr);
+  }
+  cairo_set_source_rgb(cr, c.r * 0.45, c.g * 0.45, c.b * 0.45);
+  cairo_set_line_width(cr, solid ? 1.0 : 2.0);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0);
 }
 
-Color body_color(BodyId b) {
-  if (!body_is_enabled(b)) return {0.85, 0.85, 0.85};
-  switch (body_type(b)) {
-    case BodyType::static_body: return {0.55, 0.65, 0.55};
-    case BodyType::kinematic_body: return {0.55, 0.6, 0.9};
-    default: return body_is_awake(b) ? Color{0.95, 0.65, 0.35} : Color{0.7, 0.7, 0.7};
+void paint_circle(Vec2 center, Q32 radius, Vec2 rim, const DrawShape& s, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_new_path(p.cr);
+  cairo_new_sub_path(p.cr);
+  cairo_arc(p.cr, p.m.x(d(center.x)), p.m.y(d(center.y)), d(radius) * p.m.scale, 0, 2 * M_PI);
+  finish_shape(p.cr, s, true);
+  // radius line: shows rotation
+  cairo_move_to(p.cr, p.m.x(d(center.x)), p.m.y(d(center.y)));
+  cairo_line_to(p.cr, p.m.x(d(rim.x)), p.m.y(d(rim.y)));
+  cairo_stroke(p.cr);
+}
+
+void paint_capsule(Vec2 c1, Vec2 c2, Q32 radius, const DrawShape& s, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  const double x1 = d(c1.x), y1 = d(c1.y), x2 = d(c2.x), y2 = d(c2.y);
+  const double a = std::atan2(-(y2 - y1), x2 - x1);  // screen angle (y down)
+  const double r = d(radius) * p.m.scale;
+  cairo_new_path(p.cr);
+  cairo_new_sub_path(p.cr);
+  cairo_arc(p.cr, p.m.x(x2), p.m.y(y2), r, a - M_PI / 2, a + M_PI / 2);
+  cairo_arc(p.cr, p.m.x(x1), p.m.y(y1), r, a + M_PI / 2, a + 3 * M_PI / 2);
+  cairo_close_path(p.cr);
+  finish_shape(p.cr, s, true);
+}
+
+void paint_polygon(const Vec2* vertices, int32_t count, Q32, const DrawShape& s, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_new_path(p.cr);
+  cairo_new_sub_path(p.cr);
+  for (int32_t i = 0; i < count; ++i) {
+    const double x = p.m.x(d(vertices[i].x)), y = p.m.y(d(vertices[i].y));
+    if (i == 0) cairo_move_to(p.cr, x, y);
+    else cairo_line_to(p.cr, x, y);
   }
+  cairo_close_path(p.cr);
+  finish_shape(p.cr, s, true);
+}
+
+void paint_segment(Vec2 a, Vec2 b, const DrawShape& s, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_new_path(p.cr);
+  cairo_move_to(p.cr, p.m.x(d(a.x)), p.m.y(d(a.y)));
+  cairo_line_to(p.cr, p.m.x(d(b.x)), p.m.y(d(b.y)));
+  finish_shape(p.cr, s, false);
+}
+
+void paint_aabb(const AABB& box, const DrawShape&, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_set_source_rgba(p.cr, 0.8, 0.2, 0.8, 0.6);
+  cairo_set_line_width(p.cr, 0.7);
+  cairo_rectangle(p.cr, p.m.x(d(box.lower.x)), p.m.y(d(box.upper.y)), d(box.upper.x - box.lower.x) * p.m.scale,
+                  d(box.upper.y - box.lower.y) * p.m.scale);
+  cairo_stroke(p.cr);
+}
+
+// Joints: body origin → anchor A → anchor B → body origin, coloured by kind
+// (a mouse joint from its target; a distance joint anchor to anchor).
+void paint_joint(JointId, JointType type, Vec2 oa, Vec2 a, Vec2 b, Vec2 ob, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_t* cr = p.cr;
+  static const Color k_joint_colors[] = {{0.1, 0.5, 0.1}, {0.1, 0.6, 0.7}, {0.4, 0.4, 0.4}, {0.6, 0.2, 0.6},
+                                         {0.8, 0.1, 0.1}, {0.2, 0.3, 0.8}, {0.7, 0.5, 0.1}};
+  const Color c = k_joint_colors[static_cast<size_t>(type)];
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.9);
+  cairo_set_line_width(cr, 1.5);
+  if (type != JointType::mouse && type != JointType::distance) {
+    cairo_move_to(cr, p.m.x(d(oa.x)), p.m.y(d(oa.y)));
+    cairo_line_to(cr, p.m.x(d(a.x)), p.m.y(d(a.y)));
+  } else {
+    cairo_move_to(cr, p.m.x(d(a.x)), p.m.y(d(a.y)));
+  }
+  cairo_line_to(cr, p.m.x(d(b.x)), p.m.y(d(b.y)));
+  if (type != JointType::distance) cairo_line_to(cr, p.m.x(d(ob.x)), p.m.y(d(ob.y)));
+  cairo_stroke(cr);
+  for (const Vec2 q : {a, b}) {
+    cairo_arc(cr, p.m.x(d(q.x)), p.m.y(d(q.y)), 2.5, 0, 2 * M_PI);
+    cairo_fill(cr);
+  }
+}
+
+// Contact points (red touching, blue speculative) and their normals.
+void paint_contact(Vec2 point, Vec2 normal, Q32 separation, void* context) {
+  const Painter& p = *static_cast<const Painter*>(context);
+  cairo_t* cr = p.cr;
+  const double normal_px = 12.0;
+  const double px = p.m.x(d(point.x)), py = p.m.y(d(point.y));
+  const bool touching = separation <= Q32{};
+  cairo_set_source_rgb(cr, touching ? 0.85 : 0.4, 0.1, touching ? 0.1 : 0.85);
+  cairo_arc(cr, px, py, 2.5, 0, 2 * M_PI);
+  cairo_fill(cr);
+  cairo_set_line_width(cr, 1.0);
+  cairo_move_to(cr, px, py);
+  cairo_line_to(cr, px + d(normal.x) * normal_px, py - d(normal.y) * normal_px);
+  cairo_stroke(cr);
 }
 
 void draw_world(cairo_t* cr, WorldId world, const View& view, const RenderOptions& o, double x0, double y0, double w,
@@ -118,98 +188,21 @@ void draw_world(cairo_t* cr, WorldId world, const View& view, const RenderOption
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
 
-  const int32_t body_count = world_bodies(world, nullptr, 0);
-  std::vector<BodyId> bodies(static_cast<size_t>(body_count));
-  world_bodies(world, bodies.data(), body_count);
-  std::vector<ShapeId> shapes;
-  for (BodyId b : bodies) {
-    const Transform xf = body_transform(b);
-    const Color c = body_color(b);
-    shapes.resize(static_cast<size_t>(body_shape_count(b)));
-    body_shapes(b, shapes.data(), static_cast<int32_t>(shapes.size()));
-    for (ShapeId s : shapes) {
-      const ShapeGeometry g = shape_geometry(s);
-      const bool solid = g.type == ShapeType::circle || g.type == ShapeType::capsule || g.type == ShapeType::polygon;
-      cairo_new_path(cr);
-      shape_path(cr, m, g, xf);
-      if (shape_is_sensor(s)) {
-        const double dash[] = {4.0, 3.0};
-        cairo_set_dash(cr, dash, 2, 0);
-      }
-      if (solid && !shape_is_sensor(s) && body_is_enabled(b)) {
-        cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.85);
-        cairo_fill_preserve(cr);
-      }
-      cairo_set_source_rgb(cr, c.r * 0.45, c.g * 0.45, c.b * 0.45);
-      cairo_set_line_width(cr, solid ? 1.0 : 2.0);
-      cairo_stroke(cr);
-      cairo_set_dash(cr, nullptr, 0, 0);
-      if (g.type == ShapeType::circle) {  // radius line: shows rotation
-        double cx, cy, ex, ey;
-        world_point(xf, g.circle.center, &cx, &cy);
-        world_point(xf, g.circle.center + Vec2{g.circle.radius, Q32{}}, &ex, &ey);
-        cairo_move_to(cr, m.x(cx), m.y(cy));
-        cairo_line_to(cr, m.x(ex), m.y(ey));
-        cairo_stroke(cr);
-      }
-      if (o.aabbs) {
-        const AABB box = shape_aabb(s);
-        cairo_set_source_rgba(cr, 0.8, 0.2, 0.8, 0.6);
-        cairo_set_line_width(cr, 0.7);
-        cairo_rectangle(cr, m.x(d(box.lower.x)), m.y(d(box.upper.y)), d(box.upper.x - box.lower.x) * m.scale,
-                        d(box.upper.y - box.lower.y) * m.scale);
-        cairo_stroke(cr);
-      }
-    }
-  }
-  if (o.joints) {
-    const int32_t joint_count = world_joints(world, nullptr, 0);
-    std::vector<JointId> joints(static_cast<size_t>(joint_count));
-    world_joints(world, joints.data(), joint_count);
-    for (const JointId j : joints) {
-      const JointType type = joint_type(j);
-      const Vec2 a = joint_world_anchor_a(j), b = joint_world_anchor_b(j);
-      const Vec2 oa = body_position(joint_body_a(j)), ob = body_position(joint_body_b(j));
-      static const Color k_joint_colors[] = {{0.1, 0.5, 0.1}, {0.1, 0.6, 0.7}, {0.4, 0.4, 0.4}, {0.6, 0.2, 0.6},
-                                             {0.8, 0.1, 0.1}, {0.2, 0.3, 0.8}, {0.7, 0.5, 0.1}};
-      const Color c = k_joint_colors[static_cast<size_t>(type)];
-      cairo_set_source_rgba(cr, c.r, c.g, c.b, 0.9);
-      cairo_set_line_width(cr, 1.5);
-      if (type != JointType::mouse && type != JointType::distance) {
-        cairo_move_to(cr, m.x(d(oa.x)), m.y(d(oa.y)));
-        cairo_line_to(cr, m.x(d(a.x)), m.y(d(a.y)));
-      } else {
-        cairo_move_to(cr, m.x(d(a.x)), m.y(d(a.y)));
-      }
-      cairo_line_to(cr, m.x(d(b.x)), m.y(d(b.y)));
-      if (type != JointType::distance) cairo_line_to(cr, m.x(d(ob.x)), m.y(d(ob.y)));
-      cairo_stroke(cr);
-      for (const Vec2 p : {a, b}) {
-        cairo_arc(cr, m.x(d(p.x)), m.y(d(p.y)), 2.5, 0, 2 * M_PI);
-        cairo_fill(cr);
-      }
-    }
-  }
-  if (o.contacts) {
-    if (const World* wr = find_world(world)) {
-      const double normal_px = 12.0;
-      for (const Contact& c : wr->contacts) {
-        const Manifold& mf = c.manifold;
-        for (int i = 0; i < mf.point_count; ++i) {
-          const ManifoldPoint& p = mf.points[static_cast<size_t>(i)];
-          const double px = m.x(d(p.point.x)), py = m.y(d(p.point.y));
-          const bool touching = p.separation <= Q32{};
-          cairo_set_source_rgb(cr, touching ? 0.85 : 0.4, 0.1, touching ? 0.1 : 0.85);
-          cairo_arc(cr, px, py, 2.5, 0, 2 * M_PI);
-          cairo_fill(cr);
-          cairo_set_line_width(cr, 1.0);
-          cairo_move_to(cr, px, py);
-          cairo_line_to(cr, px + d(mf.normal.x) * normal_px, py - d(mf.normal.y) * normal_px);
-          cairo_stroke(cr);
-        }
-      }
-    }
-  }
+  Painter painter{cr, m};
+  DebugDraw dd;
+  dd.context = &painter;
+  dd.draw_aabbs = o.aabbs;
+  dd.draw_joints = o.joints;
+  dd.draw_contacts = o.contacts;
+  dd.draw_polygon = paint_polygon;
+  dd.draw_circle = paint_circle;
+  dd.draw_capsule = paint_capsule;
+  dd.draw_segment = paint_segment;
+  dd.draw_aabb = paint_aabb;
+  dd.draw_joint = paint_joint;
+  dd.draw_contact = paint_contact;
+  (void)world_draw(world, dd);  // an invalid world draws nothing (a blank frame), as before
+
   if (!o.caption.empty()) {
     cairo_select_font_face(cr, "monospace", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, 13);

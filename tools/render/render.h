@@ -7,9 +7,9 @@
 // circles so rotation shows, joints (origin–anchor–anchor–origin lines,
 // coloured by kind; a mouse joint from its target), and optionally each
 // shape's AABB and each
-// contact's points and normal. The contact data is read from the world's
-// contact list (physics/world.h) read-only — the renderer never changes the
-// world.
+// contact's points and normal. Everything is read through the debug-draw
+// callbacks (physics/debug_draw.h, world_draw), never from the world's
+// internals; the renderer never changes the world.
 //
 // A View maps world metres to the picture; fit_view() frames every shape.
 // A ContactSheet lays several frames out in one PNG grid.
