@@ -75,7 +75,6 @@
 // absolute poses; l_A/l_B rotate with the body instead, 4 products per side).
 #include "physics/contact_solver.h"
 
-#include <atomic>
 #include <bit>
 
 #include "physics/fast_math.h"
@@ -205,7 +204,7 @@ inline void store_velocity(BodyState* body, Vec2 v, Q32 w, Q32 inv_mass, Q32 inv
 
 /// Marks a latched bounce: the same store from every writer (see "Workers").
 inline void mark_bounce(int32_t* mark, int32_t sub_step) {
-  std::atomic_ref<int32_t>(*mark).store(sub_step, std::memory_order_relaxed);
+  atomic_store_relaxed(mark, sub_step);
 }
 
 }  // namespace
@@ -456,7 +455,7 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
           cp.bounce_velocity = -(cc.restitution * cp.approach_velocity);
           if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
           if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
-          std::atomic_ref<bool>(context->bounced_this_sub_step).store(true, std::memory_order_relaxed);
+          atomic_store_relaxed(&context->bounced_this_sub_step, true);
         }
       }
     }

@@ -57,7 +57,7 @@ struct ActiveTask {
   int32_t count = 0;        ///< items of the stage
   int32_t block_size = 1;
   int32_t block_count = 0;  ///< the item_count handed to enqueue_task
-  int32_t* states = nullptr;  ///< per block: 0 not run, 1 running, 2 done (atomic_ref)
+  int32_t* states = nullptr;  ///< per block: 0 not run, 1 running, 2 done (task.h's atomic_* helpers)
   std::atomic<int32_t> repeated{0};
   std::atomic<int32_t> bad_ranges{0};
 };
@@ -81,8 +81,7 @@ inline void run_block(const ActiveTask& task, int32_t b) {
 
 /// Claims block b (0 → 1); true when this caller must run it.
 inline bool claim_block(int32_t* state) {
-  int32_t expected = 0;
-  return std::atomic_ref<int32_t>(*state).compare_exchange_strong(expected, 1, std::memory_order_acquire);
+  return atomic_exchange_if(state, 0, 1);
 }
 
 /// The TaskFunction handed to enqueue_task.
@@ -103,7 +102,7 @@ void task_entry(int32_t begin, int32_t end, void* task_context) {
         continue;
       }
       run_block(*task, b);
-      std::atomic_ref<int32_t>(*state).store(2, std::memory_order_release);
+      atomic_store_release(state, 2);
     }
   }
   ticket->inflight.fetch_sub(1, std::memory_order_seq_cst);
@@ -342,11 +341,11 @@ void run_user_task(TaskSystem* tasks, const char* stage, int32_t count, int32_t 
     int32_t* state = &task.states[b];
     if (claim_block(state)) {
       run_block(task, b);
-      std::atomic_ref<int32_t>(*state).store(2, std::memory_order_release);
+      atomic_store_release(state, 2);
       ++missed;
       continue;
     }
-    for (uint32_t spins = 0; std::atomic_ref<int32_t>(*state).load(std::memory_order_acquire) != 2; ++spins) {
+    for (uint32_t spins = 0; atomic_load_acquire(state) != 2; ++spins) {
       spin_pause();
     }
   }

@@ -128,6 +128,23 @@ void parallel_for(TaskSystem* tasks, const char* stage, int32_t count, int32_t b
       const_cast<void*>(static_cast<const void*>(&body)));
 }
 
+// Atomic access to plain arena data (block states, bounce marks, flags).
+// std::atomic_ref would do, but libc++ 14 (the wasm32 build) lacks it; the
+// GCC/Clang __atomic builtins are the same operations on every compiler we
+// build with.
+/// Stores v with relaxed order.
+inline void atomic_store_relaxed(int32_t* p, int32_t v) { __atomic_store_n(p, v, __ATOMIC_RELAXED); }
+inline void atomic_store_relaxed(bool* p, bool v) { __atomic_store_n(p, v, __ATOMIC_RELAXED); }
+/// Stores v with release order.
+inline void atomic_store_release(int32_t* p, int32_t v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
+/// Loads with acquire order.
+inline int32_t atomic_load_acquire(const int32_t* p) { return __atomic_load_n(p, __ATOMIC_ACQUIRE); }
+/// Replaces *p by desired when it equals expected (acquire on success);
+/// true when it did.
+inline bool atomic_exchange_if(int32_t* p, int32_t expected, int32_t desired) {
+  return __atomic_compare_exchange_n(p, &expected, desired, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED);
+}
+
 /// The number of blocks of block_size items in count items.
 inline int32_t block_count_of(int32_t count, int32_t block_size) {
   return count <= 0 ? 0 : (count - 1) / block_size + 1;
