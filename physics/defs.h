@@ -108,6 +108,8 @@ struct WorldDef {
   /// build without threads (CMake TANDEM_THREADS=OFF, the default for wasm)
   /// a value above 1 is accepted and the blocks run on the stepping thread,
   /// with the same bits. Not saved in snapshots (it is not simulation state).
+  /// Use at most the cores the application can spare: a stage waits for
+  /// every block, so a worker thread that the system preempts stalls it.
   int32_t worker_count = 1;
   /// Optional user task system (game engines bring their own job system):
   /// both null (default) for the built-in pool, or both set. Used only when
