@@ -18,6 +18,14 @@
 //      (scalar Gauss-Seidel); impulses go back to the contacts by index.
 //   Nothing here depends on addresses, hash order or thread timing.
 //
+// Workers (task.h): the merge with the pair list (step 3) is one serial
+// pass that fixes every contact's slot and its old contact; the manifolds
+// (step 4) are then computed in blocks of k_contact_block contacts, on any
+// thread in any order: each reads the shapes, the start-of-step poses and
+// its old contact, and writes only its own slot. This stage has no other
+// shared effect (begin/end touch events are derived later from the flags,
+// events.cpp, in contact order).
+//
 // Sleeping: a contact whose two bodies are both not simulated (asleep,
 // static, disabled) is carried over unchanged — no narrow phase, impulses
 // kept — so a sleeping island costs only its broad-phase pairs (island.h).
@@ -84,12 +92,25 @@ void update_manifold(const World& world, Contact* c, const Contact* old) {
 
 }  // namespace
 
+namespace {
+
+/// Contacts per block of the parallel narrow phase.
+constexpr int32_t k_contact_block = 32;
+/// old_of[] marks: a new contact (no old one), or one carried over unchanged.
+constexpr int32_t k_no_old_contact = -1;
+constexpr int32_t k_carried_contact = -2;
+
+}  // namespace
+
 void update_contacts(World* world) {
   broad_phase_update_pairs(world);
   const std::vector<ShapePair>& pairs = world->broad_phase.pairs;
   std::vector<Contact>& old_list = world->contacts;
   std::vector<Contact>& next = world->contact_scratch;
   next.clear();
+  // Per new contact: the index of its old contact, or a k_* mark above.
+  Arena* arena = &world->arena;
+  int32_t* old_of = arena_allocate_array<int32_t>(arena, static_cast<int32_t>(pairs.size()), "contact_old_index");
   size_t cursor = 0;
   for (const ShapePair& pair : pairs) {
     const uint64_t key = shape_pair_key(pair.shape_a, pair.shape_b);
@@ -114,12 +135,26 @@ void update_contacts(World* world) {
         !body_is_simulated(world->bodies[static_cast<size_t>(c.body_b)])) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
+      old_of[next.size()] = k_carried_contact;
       next.push_back(*old);
       continue;
     }
-    update_manifold(*world, &c, old);
+    old_of[next.size()] = old != nullptr ? static_cast<int32_t>(old - old_list.data()) : k_no_old_contact;
     next.push_back(c);
   }
+  // The narrow phase, per contact (see the file comment).
+  const World& w = *world;
+  Contact* slots = next.data();
+  const Contact* olds = old_list.data();
+  parallel_for(&world->tasks, "narrow_phase", static_cast<int32_t>(next.size()), k_contact_block,
+               [&w, slots, olds, old_of](int32_t begin, int32_t end) {
+                 for (int32_t i = begin; i < end; ++i) {
+                   const int32_t o = old_of[i];
+                   if (o == k_carried_contact) continue;
+                   update_manifold(w, &slots[i], o >= 0 ? &olds[o] : nullptr);
+                 }
+               });
+  arena_free(arena, old_of);
   std::swap(world->contacts, world->contact_scratch);
 }
 

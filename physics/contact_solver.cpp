@@ -56,6 +56,18 @@
 // velocities it produces overflow (stress seeds 94, 55, 9); every build then
 // saturates the same way (the in_range helpers below).
 //
+// Workers (task.h): the loops run colour by colour, each colour in blocks of
+// k_constraint_block constraints on any thread in any order, with a barrier
+// between colours (run_blocks returns when the colour is done); the overflow
+// colour, whose constraints may share bodies, runs serially last, as before.
+// Within a colour the constraints touch disjoint movable bodies; a body that
+// is not movable (kinematic: zero inverse mass and inertia) may be shared,
+// but a constraint never changes it, so its write-back is skipped (the value
+// it would store is the one already there). A bounce mark is an idempotent
+// store of the sub-step index (a relaxed atomic store), so every order
+// leaves the same marks. record_approach and store_impulses write only their
+// own constraint or contact and run over all constraints at once.
+//
 // Rejected: Box2D v3's end-of-step restitution (energy loss above); holding
 // a bounce target for the rest of the step (fights gravity, gains energy);
 // re-normalising rotations here (solver.cpp's integrate_rotation does it
@@ -71,6 +83,40 @@
 namespace tandem {
 
 namespace {
+
+/// Constraints per block of the parallel loops (fixed: block boundaries
+/// never depend on the worker count).
+constexpr int32_t k_constraint_block = 32;
+
+/// Calls per_constraint(cc) for every constraint, colour by colour (each
+/// colour's blocks in parallel, a barrier between colours), then the
+/// overflow colour serially in order (see "Workers" above).
+template <typename PerConstraint>
+void for_each_by_colour(StepContext* context, const char* stage, PerConstraint&& per_constraint) {
+  ContactConstraint* constraints = context->constraints;
+  const int32_t* offsets = context->colour_offsets;
+  for (int32_t k = 0; k < k_contact_colour_count; ++k) {
+    ContactConstraint* first = constraints + offsets[k];
+    parallel_for(context->tasks, stage, offsets[k + 1] - offsets[k], k_constraint_block,
+                 [first, &per_constraint](int32_t begin, int32_t end) {
+                   for (int32_t i = begin; i < end; ++i) per_constraint(first[i]);
+                 });
+  }
+  for (int32_t i = offsets[k_contact_colour_count]; i < offsets[k_contact_colour_count + 1]; ++i) {
+    per_constraint(constraints[i]);
+  }
+}
+
+/// Calls per_constraint(cc) for every constraint, in parallel blocks (for
+/// loops whose work writes only the constraint itself or its own contact).
+template <typename PerConstraint>
+void for_each_constraint(StepContext* context, const char* stage, PerConstraint&& per_constraint) {
+  ContactConstraint* constraints = context->constraints;
+  parallel_for(context->tasks, stage, context->constraint_count, k_constraint_block,
+               [constraints, &per_constraint](int32_t begin, int32_t end) {
+                 for (int32_t i = begin; i < end; ++i) per_constraint(constraints[i]);
+               });
+}
 
 /// Loads a constraint's body: the solver state, or a zero-velocity dummy at
 /// the origin with the identity rotation (writes to it leave it unchanged
@@ -144,6 +190,21 @@ inline void apply_impulse(Q32 impulse, Vec2 d, Q32 inv_mass_a, Q32 angular_a, Q3
   *wa = sub(*wa, mul(impulse, angular_a));
   *vb = {add(vb->x, mul(kb, d.x)), add(vb->y, mul(kb, d.y))};
   *wb = add(*wb, mul(impulse, angular_b));
+}
+
+/// Writes a constraint's result back to one of its bodies, unless the body
+/// is not movable (zero inverse mass and inertia: the result is the value
+/// already there, and the body may be shared by other constraints of the
+/// colour running on other threads).
+inline void store_velocity(BodyState* body, Vec2 v, Q32 w, Q32 inv_mass, Q32 inv_inertia) {
+  if (inv_mass == Q32::zero() && inv_inertia == Q32::zero()) return;
+  body->linear_velocity = v;
+  body->angular_velocity = w;
+}
+
+/// Marks a latched bounce: the same store from every writer (see "Workers").
+inline void mark_bounce(int32_t* mark, int32_t sub_step) {
+  atomic_store_relaxed(mark, sub_step);
 }
 
 }  // namespace
@@ -224,6 +285,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       ++colour_start[colour + 1];
     }
     for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
+    for (int32_t k = 0; k <= k_contact_colour_count + 1; ++k) context->colour_offsets[k] = colour_start[k];
     context->colour_count = 0;
     for (int32_t k = 0; k <= k_contact_colour_count; ++k)
       if (colour_start[k + 1] > colour_start[k]) context->colour_count = k + 1;
@@ -318,9 +380,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
 
 void record_contact_approach(StepContext* context) {
   BodyState* states = context->states;
-  BodyState dummy{};
-  for (int32_t i = 0; i < context->constraint_count; ++i) {
-    ContactConstraint& cc = context->constraints[i];
+  for_each_constraint(context, "record_approach", [states](ContactConstraint& cc) {
+    BodyState dummy{};
     const BodyState* a = body_state(states, cc.solver_a, &dummy);
     const BodyState* b = body_state(states, cc.solver_b, &dummy);
     for (int32_t j = 0; j < cc.point_count; ++j) {
@@ -328,17 +389,16 @@ void record_contact_approach(StepContext* context) {
       cp.approach_velocity = relative_velocity(b->linear_velocity - a->linear_velocity, cc.normal, b->angular_velocity,
                                                cp.rn_b, a->angular_velocity, cp.rn_a);
     }
-  }
+  });
 }
 
 void warm_start_contacts(StepContext* context) {
   BodyState* states = context->states;
-  BodyState dummy{};
   const int32_t previous = context->sub_step_index - 1;
-  for (int32_t i = 0; i < context->constraint_count; ++i) {
-    ContactConstraint& cc = context->constraints[i];
-    BodyState* a = body_state(states, cc.solver_a, &dummy);
-    BodyState* b = body_state(states, cc.solver_b, &dummy);
+  for_each_by_colour(context, "warm_start", [states, previous](ContactConstraint& cc) {
+    BodyState dummy_a{}, dummy_b{};
+    BodyState* a = body_state(states, cc.solver_a, &dummy_a);
+    BodyState* b = body_state(states, cc.solver_b, &dummy_b);
     const Vec2 n = cc.normal, t = right_perp(n);
     Vec2 va = a->linear_velocity, vb = b->linear_velocity;
     Q32 wa = a->angular_velocity, wb = b->angular_velocity;
@@ -355,11 +415,9 @@ void warm_start_contacts(StepContext* context) {
       vb = {add(vb.x, mul(cc.inv_mass_b, p.x)), add(vb.y, mul(cc.inv_mass_b, p.y))};
       wb = add(wb, spin_b);
     }
-    a->linear_velocity = va;
-    a->angular_velocity = wa;
-    b->linear_velocity = vb;
-    b->angular_velocity = wb;
-  }
+    store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
+    store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
+  });
 }
 
 namespace {
@@ -395,9 +453,9 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
             cp.bounce_sub_step != k) {
           cp.bounce_sub_step = k;
           cp.bounce_velocity = -(cc.restitution * cp.approach_velocity);
-          if (cc.solver_a >= 0) context->bounce_marks[cc.solver_a] = k;
-          if (cc.solver_b >= 0) context->bounce_marks[cc.solver_b] = k;
-          context->bounced_this_sub_step = true;
+          if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
+          if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
+          atomic_store_relaxed(&context->bounced_this_sub_step, true);
         }
       }
     }
@@ -441,44 +499,41 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
     apply_impulse(impulse, t, ma, cp.angular_t_a, mb, cp.angular_t_b, &va, &wa, &vb, &wb);
   }
 
-  a->linear_velocity = va;
-  a->angular_velocity = wa;
-  b->linear_velocity = vb;
-  b->angular_velocity = wb;
+  store_velocity(a, va, wa, ma, cc.inv_inertia_a);
+  store_velocity(b, vb, wb, mb, cc.inv_inertia_b);
 }
 
 }  // namespace
 
 void solve_contacts(StepContext* context) {
   context->bounced_this_sub_step = false;
-  for (int32_t i = 0; i < context->constraint_count; ++i) solve_constraint(context->constraints[i], context, true);
+  for_each_by_colour(context, "solve", [context](ContactConstraint& cc) { solve_constraint(cc, context, true); });
 }
 
 void relax_contacts(StepContext* context) {
-  for (int32_t i = 0; i < context->constraint_count; ++i) solve_constraint(context->constraints[i], context, false);
+  for_each_by_colour(context, "relax", [context](ContactConstraint& cc) { solve_constraint(cc, context, false); });
   if (!context->bounced_this_sub_step) return;
   const int32_t k = context->sub_step_index;
   const int32_t* marks = context->bounce_marks;
   for (int32_t pass = 0; pass < 2; ++pass) {
-    for (int32_t i = 0; i < context->constraint_count; ++i) {
-      ContactConstraint& cc = context->constraints[i];
+    for_each_by_colour(context, "relax_bounce", [context, marks, k](ContactConstraint& cc) {
       const bool marked = (cc.solver_a >= 0 && marks[cc.solver_a] == k) || (cc.solver_b >= 0 && marks[cc.solver_b] == k);
       if (marked) solve_constraint(cc, context, false);
-    }
+    });
   }
 }
 
 void store_contact_impulses(World* world, StepContext* context) {
   const int32_t last = context->sub_step_count - 1;
-  for (int32_t i = 0; i < context->constraint_count; ++i) {
-    const ContactConstraint& cc = context->constraints[i];
-    Contact& c = world->contacts[static_cast<size_t>(cc.contact_index)];
+  Contact* contacts = world->contacts.data();
+  for_each_constraint(context, "store_impulses", [contacts, last](const ContactConstraint& cc) {
+    Contact& c = contacts[cc.contact_index];
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ContactConstraintPoint& cp = cc.points[j];
       c.normal_impulse[static_cast<size_t>(j)] = cp.bounce_sub_step == last ? Q32::zero() : cp.normal_impulse;
       c.tangent_impulse[static_cast<size_t>(j)] = cp.tangent_impulse;
     }
-  }
+  });
   Arena* arena = &world->arena;
   arena_free(arena, context->bounce_marks);
   arena_free(arena, context->constraints);

@@ -24,6 +24,10 @@ WorldDef default_world_def() {
   def.enable_continuous = true;
   def.broad_phase = BroadPhaseKind::naive;
   def.user_data = 0;
+  def.worker_count = 1;
+  def.enqueue_task = nullptr;
+  def.finish_task = nullptr;
+  def.user_task_context = nullptr;
   def.internal_cookie = k_def_cookie;
   return def;
 }

@@ -41,6 +41,40 @@ enum class BodyType : int32_t {
   dynamic_body = 2,    ///< moved by gravity, forces, impulses and contacts; positive mass
 };
 
+/// Most worker threads a world may use (WorldDef::worker_count).
+inline constexpr int32_t k_max_workers = 16;
+
+/// One piece of a step's parallel work, handed to a user task system (see
+/// WorldDef::enqueue_task). Call it with a sub-range [begin, end) of the
+/// item range [0, item_count) that enqueue_task received, and the
+/// task_context it received, from any thread. Every item must be covered by
+/// exactly one call between enqueue_task and the return of finish_task;
+/// calls may come in any order and on any threads, and the results do not
+/// depend on which. Misuse is caught, never fatal: an item passed twice runs
+/// once (the second call skips it), a range outside [0, item_count) or with
+/// begin > end is ignored, an item never passed runs on the stepping thread
+/// after finish_task returns, and a call after finish_task returned — or
+/// after the world was destroyed — does nothing; each is reported by
+/// world_step (k_step_flag_task_failure, StepResult::task_status), and the
+/// step's results stay bit-identical. (A call that races with
+/// destroy_world() is not detected: finish every task before destroying.)
+using TaskFunction = void (*)(int32_t begin, int32_t end, void* task_context);
+
+/// A user task system's enqueue: start running `task` over the items
+/// [0, item_count) (item_count ≥ 1), in ranges of at least min_range items
+/// (a hint; smaller ranges are correct too), and return a non-null handle
+/// that finish_task will receive. `user_context` is WorldDef::user_task_context.
+/// Returning null is reported as a task failure (the items not yet run then
+/// run on the stepping thread; finish_task is not called for it).
+using EnqueueTaskFunction = void* (*)(TaskFunction task, int32_t item_count, int32_t min_range, void* task_context,
+                                      void* user_context);
+
+/// A user task system's finish: return only when every item of the task
+/// behind `user_task` (a handle enqueue_task returned) has run. Called once
+/// per successful enqueue_task, on the stepping thread, before world_step()
+/// goes on.
+using FinishTaskFunction = void (*)(void* user_task, void* user_context);
+
 /// Settings of a world. Make with default_world_def().
 struct WorldDef {
   Vec2 gravity;                    ///< m/s²; default (0, −10); each component |g| ≤ k_max_gravity
@@ -63,6 +97,28 @@ struct WorldDef {
                                    ///< kinematic shapes (bullets: all shapes); default true (continuous.cpp)
   BroadPhaseKind broad_phase = BroadPhaseKind::naive;  ///< default naive
   uint64_t user_data = 0;          ///< any integer, for the application; default 0
+  /// Threads that run a step, 1…k_max_workers; default 1 (everything on the
+  /// thread that calls world_step). Results are bit-identical for every
+  /// value: work is split into blocks fixed by the data (never by the worker
+  /// count), each block's result does not depend on the thread or order that
+  /// ran it, and shared effects are merged in a fixed order. With more than 1
+  /// and no task callbacks, the world owns a pool of worker_count − 1
+  /// std::threads (started by create_world or world_set_worker_count, never
+  /// inside a step; idle ones sleep), and the stepping thread works too. In a
+  /// build without threads (CMake TANDEM_THREADS=OFF, the default for wasm)
+  /// a value above 1 is accepted and the blocks run on the stepping thread,
+  /// with the same bits. Not saved in snapshots (it is not simulation state).
+  /// Use at most the cores the application can spare: a stage waits for
+  /// every block, so a worker thread that the system preempts stalls it.
+  int32_t worker_count = 1;
+  /// Optional user task system (game engines bring their own job system):
+  /// both null (default) for the built-in pool, or both set. Used only when
+  /// worker_count > 1; each parallel stage then is one enqueue_task /
+  /// finish_task pair. See TaskFunction for what a task system must do and
+  /// how misuse is reported. Set both or neither, else create_world refuses.
+  EnqueueTaskFunction enqueue_task = nullptr;
+  FinishTaskFunction finish_task = nullptr;  ///< see enqueue_task
+  void* user_task_context = nullptr;         ///< passed to enqueue_task and finish_task; default null
   int32_t internal_cookie = 0;     ///< set by default_world_def(); do not touch
 };
 

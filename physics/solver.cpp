@@ -39,11 +39,22 @@
 // The speed clamp decides |v| > max exactly on 128-bit squares and then
 // scales v by max/|v| (one rounded division, two rounded products), so the
 // clamped speed is within a few raw units of the maximum.
+//
+// Workers (task.h): integration and finalize are per body, each body's work
+// reads and writes only its own records (finalize: its sim, its body's
+// enabled flag, its own shapes' bounds), so they run in blocks of
+// k_body_block solver bodies on any thread in any order. The only shared
+// effect, the left-bounds step flag, is gathered per block and OR-ed in block
+// order.
 #include "physics/world.h"
 
 namespace tandem {
 
 namespace {
+
+/// Solver bodies per block of the parallel body stages (fixed: block
+/// boundaries never depend on the worker count).
+constexpr int32_t k_body_block = 64;
 
 /// Largest per-sub-step turn taken by the polynomial path, radians (1/16).
 constexpr Q32 k_small_rotation = Q32::from_raw(int64_t{1} << 28);
@@ -135,23 +146,25 @@ void stage_integrate_velocities(World* world, StepContext* context) {
   const Q32 max_w = context->max_angular_speed;
   BodyState* states = context->states;
   const SolverBodyParams* params = context->params;
-  for (int32_t i = 0; i < count; ++i) {
-    BodyState& s = states[i];
-    const SolverBodyParams& p = params[i];
-    // Without damping the factor is exactly 1 and x·1 = x exactly, so
-    // skipping the product changes no bit.
-    Vec2 v = s.linear_velocity;
-    if (p.linear_damping_factor != Q32::one()) v = {v.x * p.linear_damping_factor, v.y * p.linear_damping_factor};
-    v = v + p.delta_linear_velocity;
-    Q32 w = s.angular_velocity;
-    if (p.angular_damping_factor != Q32::one()) w = w * p.angular_damping_factor;
-    w = w + p.delta_angular_velocity;
-    // |v| ≤ |v.x| + |v.y|: the 128-bit length test only where that bound
-    // exceeds the limit.
-    if (abs(v.x) + abs(v.y) > max_v) v = clamp_linear_speed(v, max_v);
-    s.linear_velocity = v;
-    s.angular_velocity = clamp(w, -max_w, max_w);
-  }
+  parallel_for(context->tasks, "integrate_velocities", count, k_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t i = begin; i < end; ++i) {
+      BodyState& s = states[i];
+      const SolverBodyParams& p = params[i];
+      // Without damping the factor is exactly 1 and x·1 = x exactly, so
+      // skipping the product changes no bit.
+      Vec2 v = s.linear_velocity;
+      if (p.linear_damping_factor != Q32::one()) v = {v.x * p.linear_damping_factor, v.y * p.linear_damping_factor};
+      v = v + p.delta_linear_velocity;
+      Q32 w = s.angular_velocity;
+      if (p.angular_damping_factor != Q32::one()) w = w * p.angular_damping_factor;
+      w = w + p.delta_angular_velocity;
+      // |v| ≤ |v.x| + |v.y|: the 128-bit length test only where that bound
+      // exceeds the limit.
+      if (abs(v.x) + abs(v.y) > max_v) v = clamp_linear_speed(v, max_v);
+      s.linear_velocity = v;
+      s.angular_velocity = clamp(w, -max_w, max_w);
+    }
+  });
 }
 
 void stage_warm_start(World* world, StepContext* context) {
@@ -169,18 +182,20 @@ void stage_integrate_positions(World* world, StepContext* context) {
   const int32_t count = context->solver_body_count;
   const Q32 h = context->h;
   BodyState* states = context->states;
-  for (int32_t i = 0; i < count; ++i) {
-    BodyState& s = states[i];
-    s.center = mul_add(s.center, h, s.linear_velocity);
-    if (s.angular_velocity == Q32::zero()) continue;
-    const Q32 delta = h * s.angular_velocity;
-    if (abs(delta) <= k_small_rotation) {
-      s.rotation = integrate_rotation(s.rotation, delta);
-    } else {
-      // Fast spin (rare): the exact turn, then exact normalisation.
-      s.rotation = rot_normalize(mul_rot(rot_from_angle(delta), s.rotation));
+  parallel_for(context->tasks, "integrate_positions", count, k_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t i = begin; i < end; ++i) {
+      BodyState& s = states[i];
+      s.center = mul_add(s.center, h, s.linear_velocity);
+      if (s.angular_velocity == Q32::zero()) continue;
+      const Q32 delta = h * s.angular_velocity;
+      if (abs(delta) <= k_small_rotation) {
+        s.rotation = integrate_rotation(s.rotation, delta);
+      } else {
+        // Fast spin (rare): the exact turn, then exact normalisation.
+        s.rotation = rot_normalize(mul_rot(rot_from_angle(delta), s.rotation));
+      }
     }
-  }
+  });
 }
 
 void stage_relax(World* world, StepContext* context) {
@@ -202,26 +217,37 @@ void stage_store_impulses(World* world, StepContext* context) {
 void stage_finalize_bodies(World* world, StepContext* context) {
   const int32_t count = context->solver_body_count;
   const AABB bounds = world->def.bounds;
-  for (int32_t i = 0; i < count; ++i) {
-    const int32_t b = context->solver_to_body[i];
-    const size_t bi = static_cast<size_t>(b);
-    const BodyState& s = context->states[i];
-    BodySim& sim = world->body_sims[bi];
-    sim.linear_velocity = s.linear_velocity;
-    sim.angular_velocity = s.angular_velocity;
-    sim.center = s.center;
-    sim.transform.q = s.rotation;
-    sim.transform.p = s.center - rotate(s.rotation, sim.local_center);
-    sim.force = {};
-    sim.torque = Q32::zero();
-    if (!aabb_contains_point(bounds, sim.transform.p)) {
-      // Out of the world: stop simulating it before it can run out of range.
-      world->bodies[bi].enabled = false;
-      context->flags |= k_step_flag_body_left_bounds;
-    }
-    update_body_shape_bounds(world, b);
-  }
   Arena* arena = &world->arena;
+  // Per block: 1 when one of its bodies left the bounds (combined below, in
+  // block order).
+  const int32_t blocks = block_count_of(count, k_body_block);
+  uint8_t* left_bounds = arena_allocate_array<uint8_t>(arena, blocks, "left_bounds_per_block");
+  for (int32_t k = 0; k < blocks; ++k) left_bounds[k] = 0;
+  parallel_for(context->tasks, "finalize_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t i = begin; i < end; ++i) {
+      const int32_t b = context->solver_to_body[i];
+      const size_t bi = static_cast<size_t>(b);
+      const BodyState& s = context->states[i];
+      BodySim& sim = world->body_sims[bi];
+      sim.linear_velocity = s.linear_velocity;
+      sim.angular_velocity = s.angular_velocity;
+      sim.center = s.center;
+      sim.transform.q = s.rotation;
+      sim.transform.p = s.center - rotate(s.rotation, sim.local_center);
+      sim.force = {};
+      sim.torque = Q32::zero();
+      if (!aabb_contains_point(bounds, sim.transform.p)) {
+        // Out of the world: stop simulating it before it can run out of range.
+        world->bodies[bi].enabled = false;
+        left_bounds[begin / k_body_block] = 1;
+      }
+      update_body_shape_bounds(world, b);
+    }
+  });
+  for (int32_t k = 0; k < blocks; ++k) {
+    if (left_bounds[k] != 0) context->flags |= k_step_flag_body_left_bounds;
+  }
+  arena_free(arena, left_bounds);
   arena_free(arena, context->params);
   arena_free(arena, context->states);
   arena_free(arena, context->solver_to_body);

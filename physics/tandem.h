@@ -29,7 +29,10 @@
 //     from the standard containers, outside step only).
 //
 // THREADS: worlds are independent; one world must be used by one thread at a
-// time. create_world / destroy_world may be called from any thread.
+// time. create_world / destroy_world may be called from any thread. Inside
+// world_step() a world may use worker threads (WorldDef::worker_count, its
+// own pool or the application's task system); the results are bit-identical
+// for every worker count and every order in which the tasks run.
 //
 // DETERMINISM: ids are allocated lowest-free-index first (id_pool.h), bodies
 // are simulated in ascending body index, a body's shapes are kept in
@@ -115,12 +118,22 @@ std::string describe(ShapeId id);
 /// Flags world_step() raises (a bit set). Work that cannot be done is dropped
 /// in id order, so two peers degrade identically.
 inline constexpr uint32_t k_step_flag_body_left_bounds = 1u << 0;  ///< a body left the world bounds; it was disabled
+/// The user task system (WorldDef::enqueue_task / finish_task) misbehaved in
+/// this step: StepResult::task_status says how. The step was still completed
+/// in full, with the same bits as a correct task system (see TaskFunction).
+inline constexpr uint32_t k_step_flag_task_failure = 1u << 1;
 
 /// The outcome of world_step(): a Status (refused steps change nothing) and
 /// flags raised during an accepted step.
 struct StepResult {
   Status status;
   uint32_t flags = 0;  ///< k_step_flag_* bits
+  /// Ok, or (with k_step_flag_task_failure) StatusCode::invalid_argument and
+  /// a message naming the stage and the first misuse of the user task system
+  /// with counts of each kind, e.g. "world_step: task system: stage 'solve':
+  /// enqueue_task returned null (null handles 3, ...)". The step itself was
+  /// accepted (status is ok).
+  Status task_status;
   /// True when the step was accepted.
   bool ok() const { return status.ok(); }
 };
@@ -236,6 +249,14 @@ Status world_set_max_linear_speed(WorldId world, Q32 max_linear_speed);
 Status world_enable_sleep(WorldId world, bool enable);
 /// Turns continuous collision (WorldDef::enable_continuous) on or off.
 Status world_enable_continuous(WorldId world, bool enable);
+/// Sets the number of threads that run the next steps, 1…k_max_workers
+/// (WorldDef::worker_count); results stay bit-identical across the change.
+/// Starts or stops built-in pool threads here, never inside a step. Refused
+/// inside world_step() and outside 1…k_max_workers (the message names the
+/// value and the range); nothing changes then.
+Status world_set_worker_count(WorldId world, int32_t worker_count);
+/// The world's worker count (WorldDef::worker_count); 1 for an invalid handle.
+int32_t world_worker_count(WorldId world);
 /// Sets the world's user data (any integer).
 Status world_set_user_data(WorldId world, uint64_t user_data);
 /// The world's user data; 0 for an invalid handle.

@@ -104,7 +104,18 @@ Status validate_world_def(const WorldDef& def, const char* function) {
     return make_status(StatusCode::invalid_argument, std::string(function) + ": unknown broad_phase " +
                                                          std::to_string(static_cast<int32_t>(def.broad_phase)));
   }
-  return s;
+  return validate_task_settings(function, def.worker_count, def.enqueue_task, def.finish_task);
+}
+
+/// The world's settings with the task fields it runs with: a restored
+/// snapshot replaces World::def but not the workers (they are not state).
+WorldDef current_def(const World& world) {
+  WorldDef def = world.def;
+  def.worker_count = world.tasks.worker_count;
+  def.enqueue_task = world.tasks.enqueue_task;
+  def.finish_task = world.tasks.finish_task;
+  def.user_task_context = world.tasks.user_task_context;
+  return def;
 }
 
 /// Applies a changed copy of the settings after validating it.
@@ -113,7 +124,7 @@ Status change_settings(WorldId id, const char* function, Change change) {
   World* world = nullptr;
   Status s = resolve_world(id, function, true, &world);
   if (!s.ok()) return s;
-  WorldDef def = world->def;
+  WorldDef def = current_def(*world);
   change(&def);
   s = validate_world_def(def, function);
   if (s.ok()) world->def = def;
@@ -273,6 +284,8 @@ Result<WorldId> create_world(const WorldDef& def) {
   world->id = WorldId{static_cast<uint16_t>(slot + 1), generation};
   world->def = def;
   arena_init(&world->arena, 0);
+  task_system_configure(&world->tasks, slot, &world->arena, def.worker_count, def.enqueue_task, def.finish_task,
+                        def.user_task_context);
   g_worlds[static_cast<size_t>(slot)].store(world, std::memory_order_release);
   result.value = world->id;
   return result;
@@ -311,7 +324,22 @@ bool world_is_locked(WorldId id) {
 
 WorldDef world_def(WorldId id) {
   const World* w = find_world(id);
-  return w != nullptr ? w->def : default_world_def();
+  return w != nullptr ? current_def(*w) : default_world_def();
+}
+
+Status world_set_worker_count(WorldId id, int32_t worker_count) {
+  Status s = change_settings(id, "world_set_worker_count", [&](WorldDef* d) { d->worker_count = worker_count; });
+  if (!s.ok()) return s;
+  World* w = find_world(id);
+  TaskSystem& t = w->tasks;
+  task_system_configure(&t, id.index1 - 1, &w->arena, worker_count, t.enqueue_task, t.finish_task,
+                        t.user_task_context);
+  return s;
+}
+
+int32_t world_worker_count(WorldId id) {
+  const World* w = find_world(id);
+  return w != nullptr ? w->tasks.worker_count : 1;
 }
 
 Vec2 world_gravity(WorldId id) {
@@ -460,6 +488,8 @@ StepResult world_step(WorldId id, Q32 time_step) {
   context->max_linear_speed = world->def.max_linear_speed;
   // h ≥ 2^-32 s, so the quotient is ≤ π/16 · 2^32 ≈ 8.4e8: no saturation.
   context->max_angular_speed = min(k_max_angular_speed, k_max_rotation_per_sub_step / h);
+  context->tasks = &world->tasks;
+  world->tasks.failure = TaskFailure{};
 
   // The stages, in order (world.h explains each); each lap adds its time
   // to the profile.
@@ -522,6 +552,18 @@ StepResult world_step(WorldId id, Q32 time_step) {
   world->last_solver_body_count = context->solver_body_count;
   ++world->step_count;
   world->locked = false;
+  task_system_collect_strays(&world->tasks);
+  const TaskFailure& failure = world->tasks.failure;
+  if (failure.stage != nullptr) {
+    context->flags |= k_step_flag_task_failure;
+    result.task_status = make_status(
+        StatusCode::invalid_argument,
+        std::string("world_step: task system: stage '") + failure.stage + "': " + failure.what +
+            " (null handles " + std::to_string(failure.null_handles) + ", items run after finish_task " +
+            std::to_string(failure.missed_blocks) + ", items passed twice " + std::to_string(failure.repeated_blocks) +
+            ", bad ranges " + std::to_string(failure.bad_ranges) + ", calls outside a task " +
+            std::to_string(failure.stray_calls) + "); the step completed with the same results");
+  }
   result.flags = context->flags;
   profile.total_ns = profile_now() - step_start;
   world->profile = profile;

@@ -51,6 +51,7 @@
 #include "physics/ids.h"
 #include "physics/shape.h"
 #include "physics/tandem.h"
+#include "physics/task.h"
 
 namespace tandem {
 
@@ -72,6 +73,7 @@ struct StepContext {
   BodyState* states = nullptr;         ///< per solver index
   SolverBodyParams* params = nullptr;  ///< per solver index
   uint32_t flags = 0;                  ///< k_step_flag_* raised so far
+  TaskSystem* tasks = nullptr;         ///< the world's workers (task.h); parallel stages go through it
 
   // Contact solver (contact_solver.cpp); arena arrays freed by store_impulses.
   int32_t sub_step_index = 0;          ///< the current sub-step, 0…n−1
@@ -84,6 +86,8 @@ struct StepContext {
   ContactConstraint* constraints = nullptr;  ///< by graph colour, then contact order
   int32_t colour_count = 0;            ///< colours used by the last prepare, overflow included
   int32_t overflow_constraint_count = 0;  ///< constraints in the overflow group
+  /// First constraint of each colour (the overflow colour is k_contact_colour_count), and one past the last.
+  int32_t colour_offsets[k_contact_colour_count + 2] = {};
   int32_t* bounce_marks = nullptr;     ///< per solver index: last sub-step with a latched bounce, or −1
   bool bounced_this_sub_step = false;  ///< some point latched a bounce in the current sub-step
 
@@ -117,6 +121,7 @@ struct World {
   uint64_t step_count = 0;           ///< accepted non-empty steps
   int32_t last_solver_body_count = 0;
   WorldProfile profile;              ///< timing of the last step; not state (never hashed or saved)
+  TaskSystem tasks;                  ///< worker count, pool or user task system (task.h); not state
   bool locked = false;               ///< true inside world_step(); changes are refused
 };
 

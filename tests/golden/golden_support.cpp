@@ -119,6 +119,10 @@ Chain run_chain(const Scene& scene, const ChainOptions& options) {
   out.hash_source = k_hash_source;
   WorldDef def = default_world_def();
   def.broad_phase = options.cycle_broad_phase ? BroadPhaseKind::naive : options.broad_phase;
+  def.worker_count = options.worker_count;
+  def.enqueue_task = options.enqueue_task;
+  def.finish_task = options.finish_task;
+  def.user_task_context = options.user_task_context;
   const Result<WorldId> w = create_world(def);
   if (!w.ok()) {
     out.error = std::string(scene.name) + ": create_world: " + w.status.message;
@@ -153,6 +157,7 @@ Chain run_chain(const Scene& scene, const ChainOptions& options) {
     if (!ctx.error.empty()) return ctx.error;
     const StepResult r = world_step(ctx.world, dt);
     if (!r.ok()) return "world_step: " + r.status.message;
+    if ((r.flags & k_step_flag_task_failure) != 0) return r.task_status.message;
     return "";
   };
 

@@ -98,6 +98,13 @@ struct ChainOptions {
   bool compact = false;
   /// Called after every tick's step (tests that check what a scene does).
   std::function<void(SceneContext&, int32_t tick)> observe;
+  /// WorldDef::worker_count and the task callbacks of the scene's world
+  /// (test_golden_workers.cpp); a step reporting k_step_flag_task_failure
+  /// ends the run with an error.
+  int32_t worker_count = 1;
+  EnqueueTaskFunction enqueue_task = nullptr;
+  FinishTaskFunction finish_task = nullptr;
+  void* user_task_context = nullptr;
 };
 
 /// One recorded tick.

@@ -656,3 +656,54 @@ TEST_CASE("world_step makes no heap allocation when joints break", "[physics][wo
   CHECK(events == 8);
   CHECK(allocations == 0);
 }
+
+namespace {
+// A task system for the allocation test: runs each task at finish, in one
+// call, on the stepping thread.
+void* inline_enqueue(TaskFunction task, int32_t items, int32_t, void* task_context, void* user_context) {
+  task(0, items, task_context);
+  return user_context;
+}
+void inline_finish(void*, void*) {}
+}  // namespace
+
+TEST_CASE("world_step makes no heap allocation once warmed up, with workers or a task system", "[physics][world]") {
+  // The pool's threads start at create_world; the user path keeps its block
+  // states in the arena. 120 boxes so that stages split into blocks.
+  for (const bool task_system : {false, true}) {
+    int dummy = 0;
+    WorldDef def = default_world_def();
+    def.worker_count = 2;
+    if (task_system) {
+      def.enqueue_task = &inline_enqueue;
+      def.finish_task = &inline_finish;
+      def.user_task_context = &dummy;
+    }
+    ScopedWorld w(def);
+    BodyDef gd = default_body_def();
+    gd.position = {0_q32, -1_q32};
+    Result<BodyId> g = create_body(w.id, gd);
+    REQUIRE(g.ok());
+    Polygon box;
+    REQUIRE(make_box(30_q32, 1_q32, &box).ok());
+    REQUIRE(create_polygon_shape(g.value, default_shape_def(), box).ok());
+    REQUIRE(make_box(0.4_q32, 0.3_q32, &box).ok());
+    for (int k = 0; k < 120; ++k) {
+      const BodyId b = make_dynamic(w.id, {Q32::from_int(k % 20) - 10_q32, Q32::from_int(1 + k / 10)});
+      REQUIRE(create_polygon_shape(b, default_shape_def(), box).ok());
+    }
+    for (int k = 0; k < 240; ++k) REQUIRE(world_step(w.id, k_dt).ok());
+    int64_t later = 0;
+    for (int k = 0; k < 60; ++k) {
+      g_allocation_count = 0;
+      g_count_allocations = true;
+      const StepResult r = world_step(w.id, k_dt);
+      g_count_allocations = false;
+      REQUIRE(r.ok());
+      CHECK(r.flags == 0);
+      later += g_allocation_count.load();
+    }
+    INFO((task_system ? "task system" : "built-in pool"));
+    CHECK(later == 0);
+  }
+}

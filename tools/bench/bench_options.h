@@ -35,6 +35,10 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
   app.add_option("--engines", o->engines,
                  "run only these engines, e.g. tandem/grid,box2d3-w1 (names as in the table; peers need --peers)")
       ->delimiter(',');
+  app.add_option("--workers", o->workers,
+                 "Tandem's worker threads (WorldDef::worker_count, built-in pool), 1-16; results are identical for "
+                 "every count (default 1)")
+      ->check(CLI::Range(1, 16));
   app.add_flag("--profile", o->profile,
                "print Tandem's per-stage profile (median ms/step per stage over all timed steps) as a Markdown "
                "table; the JSON always has it");

@@ -62,6 +62,7 @@ struct Engine {
   std::string note;         ///< printed beside the numbers (build caveats)
   bool is_peer = false;
   int32_t max_bodies = 0;   ///< skip scenes with more dynamic bodies (0: no limit)
+  int32_t workers = 1;      ///< Tandem: WorldDef::worker_count; peers: 1
   RunFunction run;
 };
 
@@ -71,7 +72,8 @@ std::vector<std::string> tandem_broad_phase_names();
 /// The Tandem engine with the named broad phase ("naive", "sap", "grid",
 /// "tree"); false when the name is unknown. A broad phase that the linked
 /// physics library refuses shows up as a run error, not here.
-bool tandem_engine(const std::string& broad_phase, Engine* out);
+/// `workers`: WorldDef::worker_count (1…16).
+bool tandem_engine(const std::string& broad_phase, int32_t workers, Engine* out);
 
 /// The peer engines linked into this program (peers.cpp: Box2D 2.4 and
 /// Chipmunk2D when built with TANDEM_BUILD_BENCH, peers_none.cpp: none).

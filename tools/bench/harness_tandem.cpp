@@ -83,9 +83,10 @@ void probe(const SceneSpec& scene, const std::vector<BodyId>& bodies, bool end, 
   q->fingerprint = fp.h;
 }
 
-RunResult run_tandem(BroadPhaseKind kind, const SceneSpec& scene, int32_t warmup, int32_t steps) {
+RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup, int32_t steps) {
   RunResult result;
   WorldDef wd = default_world_def();
+  wd.worker_count = workers;
   wd.gravity = {scene.gravity_x, scene.gravity_y};
   wd.enable_sleep = scene.sleep;
   wd.broad_phase = kind;
@@ -206,16 +207,18 @@ std::vector<std::string> tandem_broad_phase_names() {
   return names;
 }
 
-bool tandem_engine(const std::string& broad_phase, Engine* out) {
+bool tandem_engine(const std::string& broad_phase, int32_t workers, Engine* out) {
   for (const NamedKind& k : k_kinds) {
     if (broad_phase != k.name) continue;
     Engine e;
     e.engine = "tandem";
     e.broad_phase = k.name;
     e.is_peer = false;
+    e.workers = workers;
+    if (workers > 1) e.note = std::to_string(workers) + " workers";
     const BroadPhaseKind kind = k.kind;
-    e.run = [kind](const SceneSpec& scene, int32_t warmup, int32_t steps) {
-      return run_tandem(kind, scene, warmup, steps);
+    e.run = [kind, workers](const SceneSpec& scene, int32_t warmup, int32_t steps) {
+      return run_tandem(kind, workers, scene, warmup, steps);
     };
     *out = std::move(e);
     return true;

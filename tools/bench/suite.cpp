@@ -271,7 +271,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
       << ", \"date\": " << json_string(m.date) << ", \"load_average_before\": " << json_string(m.load_before)
       << ", \"load_average_after\": " << json_string(m.load_after) << "},\n";
   out << "  \"options\": {\"runs\": " << o.runs << ", \"runs_large\": " << (o.runs_large ? o.runs_large : o.runs)
-      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"naive_max\": " << o.naive_max << ", \"max_run_seconds\": " << o.max_run_seconds
+      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"workers\": " << o.workers << ", \"naive_max\": " << o.naive_max << ", \"max_run_seconds\": " << o.max_run_seconds
       << ", \"time_step\": \"1/60 s\"},\n";
   out << "  \"warnings\": [";
   for (size_t i = 0; i < warnings.size(); ++i) out << (i ? ", " : "") << json_string(warnings[i]);
@@ -283,7 +283,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     const Quality& q = r.quality;
     out << (i ? ",\n" : "\n") << "    {\"scene\": " << json_string(r.scene) << ", \"family\": " << json_string(r.family)
         << ", \"size\": " << r.size << ", \"bodies\": " << r.bodies << ", \"engine\": " << json_string(r.engine.engine)
-        << ", \"broad_phase\": " << json_string(r.engine.broad_phase);
+        << ", \"broad_phase\": " << json_string(r.engine.broad_phase) << ", \"workers\": " << r.engine.workers;
     if (!r.engine.note.empty()) out << ", \"note\": " << json_string(r.engine.note);
     if (!r.skipped.empty()) {
       out << ", \"skipped\": " << json_string(r.skipped) << "}";
@@ -458,7 +458,7 @@ int run_bench_suite(const BenchOptions& o) {
   if (bps.empty() || std::find(bps.begin(), bps.end(), "all") != bps.end()) bps = tandem_broad_phase_names();
   for (const std::string& bp : bps) {
     Engine e;
-    if (!tandem_engine(bp, &e)) {
+    if (!tandem_engine(bp, o.workers, &e)) {
       std::fprintf(stderr, "bench: unknown broad phase '%s' (naive, sap, grid, tree, all)\n", bp.c_str());
       return 2;
     }

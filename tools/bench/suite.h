@@ -35,6 +35,7 @@ struct BenchOptions {
                                           ///< it and skips the engine for larger scenes of the family; 0: off
   std::string csv, json, svg;             ///< output files; empty: not written
   bool quiet = false;                     ///< no progress lines on stderr
+  int32_t workers = 1;                    ///< Tandem's WorldDef::worker_count, 1…16 (built-in pool)
   bool profile = false;                   ///< also print Tandem's per-stage profile (median ms per
                                           ///< stage, world_profile()) as a Markdown table
 };
