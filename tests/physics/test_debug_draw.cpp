@@ -70,7 +70,7 @@ TEST_CASE("world_draw calls one callback per shape, in body order, in world metr
   ground_def.position = Vec2{0_q32, -1_q32};
   const BodyId ground = create_body(w, ground_def).value;
   Polygon box;
-  REQUIRE(make_box(5_q32, 1_q32, &box).ok);
+  REQUIRE(make_box(5_q32, 1_q32, &box).ok());
   REQUIRE(create_polygon_shape(ground, default_shape_def(), box).ok());
   REQUIRE(create_segment_shape(ground, default_shape_def(), Segment{{-5_q32, 3_q32}, {5_q32, 3_q32}}).ok());
   const Vec2 loop[4] = {{-6_q32, 0_q32}, {-6_q32, 8_q32}, {6_q32, 8_q32}, {6_q32, 0_q32}};

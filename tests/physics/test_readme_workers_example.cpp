@@ -29,14 +29,14 @@ int64_t run(WorldDef def, int count) {
     b.type = BodyType::dynamic_body;
     b.position = {Q32::from_int(i % 20), Q32::from_int(1 + i / 20)};
     balls.push_back(create_body(world, b).value);
-    create_circle_shape(balls.back(), default_shape_def(), Circle{{}, 0.4_q32});
+    REQUIRE(create_circle_shape(balls.back(), default_shape_def(), Circle{{}, 0.4_q32}).ok());
   }
   for (int tick = 0; tick < 120; ++tick) {
-    if (tick == 60) world_set_worker_count(world, 2);  // between steps: results unchanged
+    if (tick == 60) REQUIRE(world_set_worker_count(world, 2).ok());  // between steps: results unchanged
     REQUIRE(world_step(world, Q32::from_ratio(1, 60)).ok());
   }
   const int64_t y = body_position(balls.back()).y.raw;
-  destroy_world(world);
+  CHECK(destroy_world(world).ok());
   return y;
 }
 
@@ -80,11 +80,11 @@ TEST_CASE("README worker example: 4 then 2 workers, or a task system, give one w
     b.type = BodyType::dynamic_body;
     b.position = {Q32::from_int(i % 20), Q32::from_int(1 + i / 20)};
     balls.push_back(create_body(w, b).value);
-    create_circle_shape(balls.back(), default_shape_def(), Circle{{}, 0.4_q32});
+    REQUIRE(create_circle_shape(balls.back(), default_shape_def(), Circle{{}, 0.4_q32}).ok());
   }
   for (int tick = 0; tick < 120; ++tick) REQUIRE(world_step(w, Q32::from_ratio(1, 60)).ok());
   const int64_t y_one = body_position(balls.back()).y.raw;
-  destroy_world(w);
+  CHECK(destroy_world(w).ok());
   CHECK(y_workers == y_one);
   CHECK(y_tasks == y_one);
 

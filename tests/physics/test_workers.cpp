@@ -25,9 +25,9 @@ std::vector<BodyId> build_pyramid(WorldId w, int base) {
   const Result<BodyId> g = create_body(w, ground);
   REQUIRE(g.ok());
   Polygon box;
-  REQUIRE(make_box(100_q32, 1_q32, &box).ok);
+  REQUIRE(make_box(100_q32, 1_q32, &box).ok());
   REQUIRE(create_polygon_shape(g.value, default_shape_def(), box).ok());
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok);
+  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
   std::vector<BodyId> bodies;
   for (int row = 0; row < base; ++row) {
     for (int k = 0; k < base - row; ++k) {

@@ -157,8 +157,8 @@ TEST_CASE("joint commands: every setter changes the world as the joint API call 
   CHECK(bad.message.find("set_joint_spring joint {index 0, generation 1}") != std::string::npos);
   CHECK(bad.message.find("hertz") != std::string::npos);
   CHECK(world_state_hash(by_command) == before);
-  destroy_world(by_command);
-  destroy_world(by_api);
+  CHECK(destroy_world(by_command).ok());
+  CHECK(destroy_world(by_api).ok());
 }
 
 TEST_CASE("joint commands: applied through the joint API, errors name the command and the field",

@@ -49,11 +49,11 @@ TEST_CASE("the README replay example runs as written", "[replay][readme]") {
   // Rollback every tick: the compact snapshot (replay/rollback.h), a fifth of
   // the portable image, for the same build only.
   RollbackBuffer saved;                                // reused: saves after the first do not allocate
-  rollback_save(world, &saved);
+  check(rollback_save(world, &saved));
   const uint64_t tick_hash = rollback_hash(saved);     // what peers compare per tick
   for (int i = 0; i < 8; ++i) world_step(world, dt);
-  rollback_restore(world, saved);                      // every later step bit-identical
-  rollback_save(world, &saved);
+  check(rollback_restore(world, saved));               // every later step bit-identical
+  check(rollback_save(world, &saved));
   const bool same_tick = rollback_hash(saved) == tick_hash;
 
   // Record a replay (commands + a hash per tick + keyframes), then verify it.

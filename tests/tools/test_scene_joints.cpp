@@ -138,7 +138,7 @@ TEST_CASE("bundled joint scenes: pendulum, chain, ragdolls, car and grappling ho
     CHECK(amplitude < 0.2 * 1.01);
     CHECK(amplitude > 0.2 * 0.97);
     CHECK(worst < 0.01);
-    destroy_world(r.built.world);
+    CHECK(destroy_world(r.built.world).ok());
   }
   SECTION("chain50: 51 joints hold the swinging chain and its weight together") {
     SceneRun r = load_bundled("chain50");
@@ -153,7 +153,7 @@ TEST_CASE("bundled joint scenes: pendulum, chain, ragdolls, car and grappling ho
     CHECK(world_counters(r.built.world).joint_count == 51);
     CHECK(worst < 0.04);  // measured 28 mm: a 50-link chain stretches like the bridge
     CHECK(to_d(weight.y) > 0.0);  // above the ground, hanging
-    destroy_world(r.built.world);
+    CHECK(destroy_world(r.built.world).ok());
   }
   SECTION("ragdolls: down the stairs, joints within the stated stretch, nothing escapes") {
     SceneRun r = load_bundled("ragdolls");
@@ -177,7 +177,7 @@ TEST_CASE("bundled joint scenes: pendulum, chain, ragdolls, car and grappling ho
     CHECK(resting < 0.004);   // the pass's 3 mm slop
     CHECK(lowest < 1.0);
     CHECK_FALSE(escaped);
-    destroy_world(r.built.world);
+    CHECK(destroy_world(r.built.world).ok());
   }
   SECTION("car: the wheel motors drive it over the chain ground, stop it, and back it up") {
     SceneRun r = load_bundled("car");
@@ -200,7 +200,7 @@ TEST_CASE("bundled joint scenes: pendulum, chain, ragdolls, car and grappling ho
     CHECK(x900 < x720 - 1.0);
     CHECK(min_y > -2.0);     // on the ground, never through it
     CHECK(max_tilt < 1.0);   // never rolled over
-    destroy_world(r.built.world);
+    CHECK(destroy_world(r.built.world).ok());
   }
   SECTION("grappling_hook: the rope never stretches past its reel, pulls only, and releases at tick 470") {
     SceneRun r = load_bundled("grappling_hook");
@@ -229,6 +229,6 @@ TEST_CASE("bundled joint scenes: pendulum, chain, ragdolls, car and grappling ho
     CHECK(shortest < 7.0);
     CHECK_FALSE(joint_is_valid(rope));
     CHECK(world_counters(r.built.world).joint_count == 0);
-    destroy_world(r.built.world);
+    CHECK(destroy_world(r.built.world).ok());
   }
 }

@@ -122,7 +122,7 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
     }
     for (const BoxPart& part : s.boxes) {
       Polygon box;
-      if (!make_offset_box(part.half_width, part.half_height, Vec2{part.cx, part.cy}, Q32{}, Q32{}, &box).ok) {
+      if (!make_offset_box(part.half_width, part.half_height, Vec2{part.cx, part.cy}, Q32{}, Q32{}, &box).ok()) {
         result.error = "make_offset_box (body " + std::to_string(i) + ") refused";
         (void)destroy_world(w.value);
         return result;
