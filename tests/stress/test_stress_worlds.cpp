@@ -78,16 +78,23 @@ TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impa
   }
 }
 
-// KNOWN ISSUE 2: a dynamic body carrying one-sided chain segments that rests
-// against a static box sinks into the box at about the contact push speed
-// (3 m/s, while its velocity reads zero) and comes out beyond it, in slow
-// worlds too. Seeds 6 (segment + 3 chain segments, 1 kg), 19, 22 (all slow
-// worlds); about 20 % of all worlds. Box2D ignores a polygon behind a
-// one-sided segment; the engine's chain-segment manifold apparently pushes
-// the wrong way.
-TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (stress seeds 6, 19, 22)",
-          "[.][known-issue][stress]") {
-  for (uint64_t seed : {6u, 19u, 22u}) {
+// Formerly KNOWN ISSUE 2: a dynamic body carrying one-sided chain segments
+// that rests against a static box sank into the box at about the contact
+// push speed (3 m/s, while its velocity read zero) and came out beyond it, in
+// slow worlds too (about 20 % of all worlds; 36 of seeds 1-200). The box is
+// much larger than the segment: its centroid projected in front of the
+// (tilted) segment, so the chain-vs-polygon manifold took the box to be in
+// front and pushed it out through the segment's front by its whole depth
+// behind the line. physics/manifold_chain.cpp now judges the side by the part
+// of the box over the segment (regression test in
+// tests/physics/test_chain_body.cpp). Seeds 19, 22, 44 must now stay
+// contained. Seed 6 still loses a 1 cm body (a segment and chain segments,
+// the default 1 kg, spinning at the angular limit in the container's corner):
+// its centre jumps 0.4 m into the wall in one tick (352) at 0.2 m/s and it
+// leaves at tick 375; cause not found yet (1 of seeds 1-200 after the fix,
+// counted as a chain-body escape because the body carries chain segments).
+TEST_CASE("regression: bodies with chain segments stay out of static boxes (stress seeds 19, 22, 44)", "[stress]") {
+  for (uint64_t seed : {19u, 22u, 44u}) {
     StressConfig config;
     config.seed = seed;
     config.ticks = 600;
@@ -95,6 +102,7 @@ TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (
     const StressResult r = tandem::stress::run_stress_world(config);
     INFO(tandem::stress::describe(seed, r));
     CHECK(r.ok());
+    CHECK(r.escapes == 0);
   }
 }
 
@@ -131,8 +139,8 @@ TEST_CASE("random worlds that used to overflow (seeds 94, 55, 9, 34) compute the
     uint64_t seed;
     uint64_t final_hash;
   };
-  for (const Expected& e : {Expected{94, 0x68111525f979b085ull}, Expected{55, 0xefc14ea66f1e4497ull},
-                            Expected{9, 0x39f5f37741c86550ull}, Expected{34, 0xbe5a4b1ba466a6ceull}}) {
+  for (const Expected& e : {Expected{94, 0x00840f84cc04917aull}, Expected{55, 0xefc14ea66f1e4497ull},
+                            Expected{9, 0x5447e4a9b892f251ull}, Expected{34, 0x8da6b20b83b7e5a3ull}}) {
     StressConfig config;
     config.seed = e.seed;
     config.ticks = 600;
