@@ -65,6 +65,19 @@ TEST_CASE("random worlds: seeds 19-24 agree across broad phases and restore, sta
 // 0.005 m circle of 2.5 kg resting on the floor jumps in one step (tick 249)
 // to ω = 51,293 rad/s and 335 m/s and goes through the floor. About 1.4 % of
 // all worlds (40 % of worlds are fast).
+//
+// Known issue 1, status (November 2026): still open. Clamping ω to the limit
+// after every contact solve (before positions are integrated, as the
+// integrate-velocities clamp does) keeps seed 94's body at 47 rad/s instead
+// of 4,144, but the body still leaves the contact at 146 m/s into the wall
+// (the solver's effective mass counts on the rotation the clamp then
+// removes, so the passes cannot stop the contact point through the linear
+// velocity), and the next step's continuous collision cannot stop a body
+// that starts the step touching the wall with its centre 1 mm from it. The
+// clamp also changed three golden scenes (ragdolls, bridge, random_mix: the
+// joint solver is not clamped), so it was not kept. A fix needs the solve to
+// treat a saturated angular velocity as a constraint (or time-of-impact
+// sub-steps, continuous.cpp "LIMITS").
 TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impact (stress seeds 94, 34)",
           "[.][known-issue][stress]") {
   for (uint64_t seed : {94u, 34u}) {
