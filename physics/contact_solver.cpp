@@ -49,12 +49,46 @@
 // impulses of the constraint in the same pass (bias-free).
 //
 // Arithmetic: every product is one Q32 multiplication (nearest, ties away
-// from zero); dot and cross are exact 128-bit sums rounded once. Within the
-// limits of limits.h (masses, speeds, sizes) no product saturates: impulses
-// are at most mass × speed ≤ 1e5 kg × 2e3 m/s. Not every term is bounded,
-// though: a tiny inertia with a long lever arm makes I⁻¹(r×n)² and the
-// velocities it produces overflow (stress seeds 94, 55, 9); every build then
-// saturates the same way (the in_range helpers below).
+// from zero); dot and cross are exact 128-bit sums rounded once. Q32.32 holds
+// magnitudes below 2^31 ≈ 2.1e9.
+//
+// Range of the preparation (limits.h; docs/determinism.md, "Range of the
+// contact preparation"). Per body side of a constraint:
+//   m⁻¹ ≤ 1/k_min_body_mass = 1000 kg⁻¹ (< 2^10).
+//   I⁻¹ < 2^31: body.cpp inverts any inertia of more than 2 raw units, and
+//     nothing bounds I from below (a 1 g circle of 5 mm radius has I⁻¹ ≈
+//     8e7; a mass-free segment adds reach but no inertia).
+//   r, the anchor from the centre of mass: shapes lie within
+//     k_max_shape_size = 1e4 m of the body origin and so does the centre of
+//     mass, so |r| ≤ 2e4 m (< 2^15) plus the speculative margin; r×n, r×t
+//     and |r|² ≈ 4e8 m² (< 2^29) are in range.
+//   Unbounded: I⁻¹·(r×n) ≤ 2^46 and I⁻¹·(r×n)² ≤ 2^61 — the overflow of
+//     stress seeds 55, 9, 94 (formerly known issue 4), which then spun bodies
+//     to 1e7 rad/s.
+// The bound: each side uses I⁻¹_c = min(I⁻¹, K/ρ²), where ρ² is the largest
+// of the body's max_extent² and |r|² of the constraint's points and K =
+// k_max_contact_angular_inv_mass = 64 000 kg⁻¹ (64 × the largest m⁻¹). Then
+//   I⁻¹_c·(r×n)² ≤ I⁻¹_c·ρ² ≤ K = 64 000,
+//   I⁻¹_c·|r×n| ≤ min(I⁻¹·ρ, K/ρ) ≤ √(I⁻¹·K) < √(2^31·2^16) < 2^24,
+//   k = m⁻¹_A + m⁻¹_B + Σ I⁻¹_c·(r×n)² ≤ 2·(1000 + 64 000) < 2^17,
+// and the effective mass 1/k ≥ 7.7e-6 kg keeps ≥ 15 significant bits.
+// Physical meaning: a contact point never responds as lighter than 1/(m⁻¹ +
+// K) ≈ 1/64 of the lightest allowed body; equivalently, for its contacts a
+// body's inertia is taken as at least ρ²/K (its radius of gyration at least
+// ρ/253 for a 1 kg body). A body of one solid shape never reaches the bound
+// (its radius of gyration is at least 0.4 of its reach, so I⁻¹ρ² ≤ 6.25/m ≤
+// 6 250 kg⁻¹ within the mass limit); a body does only when massless segments
+// or chain segments, or a much lighter shape, lie far from where its mass is,
+// and there the exact answer (an effective mass of I/ρ², below the Q32
+// resolution of the impulses that would act on it) is not representable
+// anyway. A body under
+// the bound keeps every bit of I⁻¹ (the test is an exact 128-bit product),
+// so ordinary scenes (the golden chains) are unchanged.
+// In the sub-steps: impulses are at most (effective mass) × (relative
+// speed) ≤ 1e5 kg × 2e3 m/s plus the rotational part, and a spin change per
+// impulse is λ·I⁻¹_c·(r×n) ≤ |v_rel|·I⁻¹_c|r×n|/(I⁻¹_c(r×n)²) = |v_rel|/|r×n|
+// for the rotation-dominated case. The in_range helpers below still saturate
+// (the same bits in every build) should a crafted state go further.
 //
 // Workers (task.h): the loops run colour by colour, each colour in blocks of
 // k_constraint_block constraints on any thread in any order, with a barrier
@@ -127,8 +161,8 @@ inline BodyState* body_state(BodyState* states, int32_t index, BodyState* dummy)
 
 // In-range arithmetic for the inner loops (solve, relax, warm start). Within
 // the limits of limits.h every quantity here should stay far inside the
-// Q32.32 range (see "Arithmetic" above), but the random-world stress (seeds
-// 94, 55, 9) shows tiny inertias with long lever arms reach it. In release
+// Q32.32 range (see "Arithmetic" above; before the inertia bound the
+// random-world stress, seeds 94, 55, 9, reached it). In release
 // builds with a native 128-bit type these helpers skip the fault reports and
 // sum products in one 128-bit value, with the same rounding (nearest, ties
 // away from zero) and the same saturation as the checked operators, so the
@@ -205,6 +239,29 @@ inline void store_velocity(BodyState* body, Vec2 v, Q32 w, Q32 inv_mass, Q32 inv
 /// Marks a latched bounce: the same store from every writer (see "Workers").
 inline void mark_bounce(int32_t* mark, int32_t sub_step) {
   atomic_store_relaxed(mark, sub_step);
+}
+
+/// The largest angular term I⁻¹·r² of a contact's effective-mass denominator,
+/// 1/kg: 64 times the largest inverse mass of a body (1/k_min_body_mass). See
+/// "Range of the preparation" above and docs/determinism.md.
+constexpr int64_t k_max_contact_angular_inv_mass = 64000;
+
+/// d², saturated at Q32::max() (an extent of at most 2·k_max_shape_size
+/// squares to ≤ 4e8 m², far inside the range).
+inline Q32 square_extent(Q32 d) { return fast::mul(d, d); }
+
+/// The inverse inertia a contact constraint uses for a body whose contact
+/// points lie within reach_sq (m²) of its centre of mass: I⁻¹ itself while
+/// I⁻¹·reach² ≤ k_max_contact_angular_inv_mass, otherwise
+/// k_max_contact_angular_inv_mass / reach² (< I⁻¹). The test is exact (a
+/// 128-bit product), so a body under the bound keeps every bit of I⁻¹.
+inline Q32 contact_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
+  if (inv_inertia <= Q32::zero() || reach_sq <= Q32::zero()) return inv_inertia;
+  // I⁻¹.raw · reach².raw > K · 2^64 ⇔ I⁻¹ · reach² > K (both factors ≥ 0).
+  const wide::U128 p = wide::mul_s64(inv_inertia.raw, reach_sq.raw);
+  const uint64_t k = static_cast<uint64_t>(k_max_contact_angular_inv_mass);
+  if (p.hi < k || (p.hi == k && p.lo == 0)) return inv_inertia;
+  return Q32::from_int(k_max_contact_angular_inv_mass) / reach_sq;
 }
 
 }  // namespace
@@ -337,13 +394,26 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     // Geometry (anchors, crosses, the start-of-step gap) uses fast_math.h:
     // anchors lie within a shape's reach of its body (< 2^21 m) and n, t and
     // the rotations are unit, so nothing saturates and the bits are the
-    // checked operators'. Mass terms keep the checked operators (a tiny
-    // body's inverse inertia times a long arm is bounded only by limits.h).
+    // checked operators'. Mass terms keep the checked operators; with the
+    // inverse inertia bounded by contact_inv_inertia they stay in range
+    // ("Range of the preparation" above).
+    Vec2 anchors_a[2], anchors_b[2];
+    Q32 reach_sq_a = square_extent(world->bodies[static_cast<size_t>(c.body_a)].max_extent);
+    Q32 reach_sq_b = square_extent(world->bodies[static_cast<size_t>(c.body_b)].max_extent);
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
+      anchors_a[j] = fast::sub(mp.anchor_a, com_offset_a);
+      anchors_b[j] = fast::sub(mp.anchor_b, com_offset_b);
+      reach_sq_a = max(reach_sq_a, fast::dot(anchors_a[j], anchors_a[j]));
+      reach_sq_b = max(reach_sq_b, fast::dot(anchors_b[j], anchors_b[j]));
+    }
+    cc.inv_inertia_a = contact_inv_inertia(cc.inv_inertia_a, reach_sq_a);
+    cc.inv_inertia_b = contact_inv_inertia(cc.inv_inertia_b, reach_sq_b);
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       ContactConstraintPoint& cp = cc.points[j];
-      const Vec2 anchor_a = fast::sub(mp.anchor_a, com_offset_a);
-      const Vec2 anchor_b = fast::sub(mp.anchor_b, com_offset_b);
+      const Vec2 anchor_a = anchors_a[j];
+      const Vec2 anchor_b = anchors_b[j];
       cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : sim_a.center + anchor_a;
       cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : sim_b.center + anchor_b;
       // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n

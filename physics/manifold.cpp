@@ -61,6 +61,13 @@
 //   segment normal at a flat or concave end, and skipped outside, so a body
 //   sliding across an inner vertex never catches on it. The closest features
 //   come from the same brute-force query as above instead of GJK's simplex.
+//   Which side the other shape is on: Box2D's test of its centroid, and, when
+//   the cores overlap, also the part of it over the segment (clipped to the
+//   segment's span): if that part reaches farther behind the line than in
+//   front, no contact. The centroid alone fails for a shape much larger than
+//   the segment (a wall box beside a body carrying chain segments), which was
+//   then pushed out through the segment's front by its depth behind it; a
+//   polygon vertex over the segment's back is likewise not a contact.
 //
 // * Margin. A point is reported while its separation < k_speculative_distance
 //   (each clipped point is filtered on its own, so a tilted box can report

@@ -367,3 +367,51 @@ TEST_CASE("two worlds with chains stay bit-identical", "[physics][chain]") {
   CHECK(same);
   CHECK(motion > 100);  // the scene actually moved
 }
+
+TEST_CASE("a dynamic body carrying a chain segment rests against a tall wall box instead of sinking through it",
+          "[physics][chain]") {
+  // Formerly a known issue of the random-world stress (seeds 6, 19, 22, 44:
+  // about 20 % of worlds). The wall's centroid projects in front of the
+  // tilted chain segment (a tall box), but the part of the box over the
+  // segment lies behind it; the chain-vs-polygon manifold used to push the
+  // box out through the segment's front by its whole depth behind the line,
+  // so the body was pushed into the wall at the contact push speed.
+  WorldDef wd = default_world_def();
+  wd.gravity = {-10_q32, Q32::zero()};  // towards the wall
+  ScopedWorld world(wd);
+  const BodyId wall = add_body(world.id, BodyType::static_body, {});
+  Polygon box;
+  REQUIRE(make_box(0.5_q32, 5_q32, &box).ok());  // x in [−0.5, 0.5], y in [−5, 5]
+  REQUIRE(create_polygon_shape(wall, default_shape_def(), box).ok());
+
+  BodyDef bd = default_body_def();
+  bd.type = BodyType::dynamic_body;
+  bd.position = {0.6_q32, -3_q32};
+  bd.rotation = rot_from_angle(0.44_q32);  // about 25°: the segment's normal tilts towards the wall's centre
+  bd.fixed_rotation = true;
+  Result<BodyId> body = create_body(world.id, bd);
+  REQUIRE(body.ok());
+  REQUIRE(create_circle_shape(body.value, default_shape_def(), Circle{{}, 0.1_q32}).ok());
+  // One chain segment from (−0.15, −0.1) to (−0.15, 0.1) with straight ghosts:
+  // its collision side faces +x in the body frame, away from the wall, and it
+  // reaches 5 cm into the wall when the circle touches the wall's face.
+  const std::vector<Vec2> points = {
+      {-0.15_q32, -0.3_q32}, {-0.15_q32, -0.1_q32}, {-0.15_q32, 0.1_q32}, {-0.15_q32, 0.3_q32}};
+  std::vector<ShapeId> chain;
+  REQUIRE(create_chain_shapes(body.value, default_shape_def(), points.data(), 4, false, &chain).ok());
+  REQUIRE(chain.size() == 1);
+  // Its centroid projects in front of the segment (the case the centroid test misses).
+  {
+    const Transform xf = body_transform(body.value);
+    const Vec2 p1 = transform_point(xf, {-0.15_q32, -0.1_q32});
+    const Vec2 n1 = rotate(xf.q, Vec2{Q32::one(), Q32::zero()});
+    REQUIRE(dot(n1, Vec2{} - p1) > Q32::zero());
+  }
+  for (int32_t tick = 0; tick < 180; ++tick) REQUIRE(world_step(world.id, k_dt).status.ok());
+  // At rest with the circle on the wall's face (x = 0.5 + 0.1), not in the wall.
+  const Vec2 c = body_world_center(body.value);
+  INFO("centre (" << ld(c.x) << ", " << ld(c.y) << ")");
+  CHECK(ld(c.x) > 0.58L);
+  CHECK(ld(c.x) < 0.62L);
+  CHECK(std::abs(ld(body_linear_velocity(body.value).x)) < 0.05L);
+}

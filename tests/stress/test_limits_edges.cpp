@@ -297,6 +297,16 @@ TEST_CASE("limits: no tunnelling through static walls >= 0.01 m up to 1000 m/s (
 // 400 m/s (60°), and at 1000 m/s through 0.01 m and 0.1 m walls head on — 8
 // of its 72 shots; boxes and capsules of the same size stop. Hidden ([.]) so
 // the default runs stay green; run it by name to reproduce.
+// Diagnosis (November 2026): continuous collision stops the circle where
+// time_of_impact puts it, touching (cores at total radius − k_linear_slop),
+// so the next step's contact starts touching and is SOFT; in its first
+// sub-step the soft solve lets ~2 % of 1000 m/s through (0.096 m in 1/240 s),
+// the centre passes the middle of the wall, and the normal flips. Backing the
+// continuous stop off by 2·k_linear_slop (the contact then starts speculative,
+// hence rigid) stopped all 72 shots, but it also changed every golden scene
+// and broke the elastic-circles energy and ragdoll-pile tests, so it was not
+// kept; a fix should make a touching contact rigid for its first sub-step
+// when it closes faster than the soft contact can absorb.
 TEST_CASE("known issue: the smallest circle tunnels through thin static walls at >= 100 m/s",
           "[.][known-issue][stress][limits]") {
   CHECK(tunnelling_grid(true) == 0);

@@ -65,6 +65,19 @@ TEST_CASE("random worlds: seeds 19-24 agree across broad phases and restore, sta
 // 0.005 m circle of 2.5 kg resting on the floor jumps in one step (tick 249)
 // to ω = 51,293 rad/s and 335 m/s and goes through the floor. About 1.4 % of
 // all worlds (40 % of worlds are fast).
+//
+// Known issue 1, status (November 2026): still open. Clamping ω to the limit
+// after every contact solve (before positions are integrated, as the
+// integrate-velocities clamp does) keeps seed 94's body at 47 rad/s instead
+// of 4,144, but the body still leaves the contact at 146 m/s into the wall
+// (the solver's effective mass counts on the rotation the clamp then
+// removes, so the passes cannot stop the contact point through the linear
+// velocity), and the next step's continuous collision cannot stop a body
+// that starts the step touching the wall with its centre 1 mm from it. The
+// clamp also changed three golden scenes (ragdolls, bridge, random_mix: the
+// joint solver is not clamped), so it was not kept. A fix needs the solve to
+// treat a saturated angular velocity as a constraint (or time-of-impact
+// sub-steps, continuous.cpp "LIMITS").
 TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impact (stress seeds 94, 34)",
           "[.][known-issue][stress]") {
   for (uint64_t seed : {94u, 34u}) {
@@ -78,16 +91,23 @@ TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impa
   }
 }
 
-// KNOWN ISSUE 2: a dynamic body carrying one-sided chain segments that rests
-// against a static box sinks into the box at about the contact push speed
-// (3 m/s, while its velocity reads zero) and comes out beyond it, in slow
-// worlds too. Seeds 6 (segment + 3 chain segments, 1 kg), 19, 22 (all slow
-// worlds); about 20 % of all worlds. Box2D ignores a polygon behind a
-// one-sided segment; the engine's chain-segment manifold apparently pushes
-// the wrong way.
-TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (stress seeds 6, 19, 22)",
-          "[.][known-issue][stress]") {
-  for (uint64_t seed : {6u, 19u, 22u}) {
+// Formerly KNOWN ISSUE 2: a dynamic body carrying one-sided chain segments
+// that rests against a static box sank into the box at about the contact
+// push speed (3 m/s, while its velocity read zero) and came out beyond it, in
+// slow worlds too (about 20 % of all worlds; 36 of seeds 1-200). The box is
+// much larger than the segment: its centroid projected in front of the
+// (tilted) segment, so the chain-vs-polygon manifold took the box to be in
+// front and pushed it out through the segment's front by its whole depth
+// behind the line. physics/manifold_chain.cpp now judges the side by the part
+// of the box over the segment (regression test in
+// tests/physics/test_chain_body.cpp). Seeds 19, 22, 44 must now stay
+// contained. Seed 6 still loses a 1 cm body (a segment and chain segments,
+// the default 1 kg, spinning at the angular limit in the container's corner):
+// its centre jumps 0.4 m into the wall in one tick (352) at 0.2 m/s and it
+// leaves at tick 375; cause not found yet (1 of seeds 1-200 after the fix,
+// counted as a chain-body escape because the body carries chain segments).
+TEST_CASE("regression: bodies with chain segments stay out of static boxes (stress seeds 19, 22, 44)", "[stress]") {
+  for (uint64_t seed : {19u, 22u, 44u}) {
     StressConfig config;
     config.seed = seed;
     config.ticks = 600;
@@ -95,29 +115,21 @@ TEST_CASE("known issue 2: bodies with chain segments sink through static boxes (
     const StressResult r = tandem::stress::run_stress_world(config);
     INFO(tandem::stress::describe(seed, r));
     CHECK(r.ok());
+    CHECK(r.escapes == 0);
   }
 }
 
-// KNOWN ISSUE 4: fixed-point overflows in worlds the API accepted. Seeds 55
-// (slow world), 9 and 94, found by the sanitizer build (fault checks on) of
-// scripts/stress.sh. The first fault is in physics/contact_solver.cpp,
-// prepare_contact_constraints: inv_inertia × (r × n)² (likely a body of tiny
-// inertia whose massless segments or chain segments reach far from its centre
-// of mass: limits.h bounds inertia from above only, so nothing bounds
-// inv_inertia × r²). Seed 94 goes on to overflow in the contact solve (246
-// "contact solve" faults, plus adds and subtracts, by tick 512).
-// TANDEM_STRESS_LOG_FAULTS=1 tandem_stress --first-seed 94 --worlds 1 lists
-// the faults. Only builds with fault checks count faults.
-//
-// The overflows used to split builds too: the release fast paths with a
-// native 128-bit type (physics/fast_math.h, contact_solver.cpp's in_range)
-// wrapped instead of saturating, so seed 94's chain in g++ -O3 x86-64 differed
-// from tick 512 on from the sanitizer and portable-int128 builds'. They now
-// saturate exactly where the checked operators do; the regular test below
-// asserts the final hashes (recorded on the portable-int128 preset, the
-// i686/wasm32 path) in every build.
-TEST_CASE("known issue 4: fixed-point overflow in contact preparation (stress seeds 55, 9, 94)",
-          "[.][known-issue][stress]") {
+// Formerly KNOWN ISSUE 4: fixed-point overflows in worlds the API accepted
+// (seeds 55, 9, 94, found by the sanitizer build of scripts/stress.sh). A body
+// of tiny rotational inertia whose contact points lie far from its centre of
+// mass (a light circle or capsule carrying massless segments or chain
+// segments) made inv_inertia × (r × n)² overflow in
+// prepare_contact_constraints, and the contact solve after it (246 faults in
+// seed 94). The preparation now bounds the angular term of the effective mass
+// (contact_solver.cpp, "Range of the preparation"; docs/determinism.md), so
+// these worlds run without a fault in builds with fault checks (debug,
+// sanitizers; other builds count none).
+TEST_CASE("regression: no fixed-point fault in contact preparation (stress seeds 55, 9, 94)", "[stress]") {
   for (uint64_t seed : {55u, 9u, 94u}) {
     StressConfig config;
     config.seed = seed;
@@ -125,20 +137,23 @@ TEST_CASE("known issue 4: fixed-point overflow in contact preparation (stress se
     const StressResult r = tandem::stress::run_stress_world(config);
     INFO(tandem::stress::describe(seed, r));
     CHECK(r.faults == 0);
+    CHECK(r.steps > 0);
   }
 }
 
-TEST_CASE("random worlds that overflow (seeds 94, 55, 9, 34) compute the same bits in every build", "[stress]") {
-  // Run 0 (naive broad phase) only, 600 ticks: seed 94 first saturated
-  // differently at tick 512. Values recorded with the portable-int128 preset;
-  // g++ release (native __int128, fast paths) and the sanitizer builds
-  // (checked operators) must give the same.
+TEST_CASE("random worlds that used to overflow (seeds 94, 55, 9, 34) compute the same bits in every build",
+          "[stress]") {
+  // Run 0 (naive broad phase) only, 600 ticks. Before the range bound these
+  // worlds saturated (seed 94 first split g++ -O3 from the checked builds at
+  // tick 512); now nothing saturates, and g++ release (native __int128, fast
+  // paths), the sanitizer builds (checked operators) and the portable-int128
+  // preset (the i686/wasm32 path) must give these final hashes.
   struct Expected {
     uint64_t seed;
     uint64_t final_hash;
   };
-  for (const Expected& e : {Expected{94, 0x424ec35f8578e0efull}, Expected{55, 0x334b86ec29f315beull},
-                            Expected{9, 0x5c86890ecfb25da7ull}, Expected{34, 0x53853ff8ae4ddb10ull}}) {
+  for (const Expected& e : {Expected{94, 0x00840f84cc04917aull}, Expected{55, 0xefc14ea66f1e4497ull},
+                            Expected{9, 0x5447e4a9b892f251ull}, Expected{34, 0x8da6b20b83b7e5a3ull}}) {
     StressConfig config;
     config.seed = e.seed;
     config.ticks = 600;
@@ -146,9 +161,25 @@ TEST_CASE("random worlds that overflow (seeds 94, 55, 9, 34) compute the same bi
     config.check_restore = false;
     const StressResult r = tandem::stress::run_stress_world(config);
     INFO(tandem::stress::describe(e.seed, r));
-    // r.ok() is false in builds with fault checks (the overflows are known
-    // issue 4); every step must still have run.
+    CHECK(r.faults == 0);
     CHECK(r.steps == config.ticks);
     CHECK(r.final_hash == e.final_hash);
   }
+}
+
+// KNOWN ISSUE 5 (found 2026-11-25 by the sanitizer run after the fixes above;
+// open): seed 776, a fast world with a ±1,500 m container, reports 1,905
+// fixed-point faults in builds with fault checks, the first in the contact
+// solve's relative velocity (velocities beyond 2^31 m/s inside the solve;
+// every build still saturates the same way). With the angular-speed clamp
+// tried for known issue 1 the seed had none, so a runaway spin in the contact
+// solve is the likely start. TANDEM_STRESS_LOG_FAULTS=1 tandem_stress
+// --first-seed 776 --worlds 1 lists the faults.
+TEST_CASE("known issue 5: fixed-point overflow in the contact solve (stress seed 776)", "[.][known-issue][stress]") {
+  StressConfig config;
+  config.seed = 776;
+  config.ticks = 600;
+  const StressResult r = tandem::stress::run_stress_world(config);
+  INFO(tandem::stress::describe(776, r));
+  CHECK(r.faults == 0);
 }
