@@ -95,6 +95,7 @@ TEST_CASE("world_draw calls one callback per shape, in body order, in world metr
   jd.base.body_a = ball;
   jd.base.body_b = cap;
   jd.base.local_anchor_a = Vec2{0_q32, 1_q32};
+  jd.base.local_anchor_b = Vec2{2_q32, -1.5_q32};  // the same world point: no gap for the position pass to close
   REQUIRE(create_revolute_joint(w, jd).ok());
 
   Log log;
@@ -115,9 +116,10 @@ TEST_CASE("world_draw calls one callback per shape, in body order, in world metr
   // Ball: centre at its body position; rim a radius along its local x, which a quarter turn points up.
   CHECK(log.points[4] == Vec2{1_q32, 0.5_q32});
   CHECK(log.points[5] == Vec2{1_q32, 1_q32});
-  // Joint anchors: A's local (0, 1) rotated a quarter turn is (−1, 0) from the ball; B's is its origin.
+  // Joint anchors: A's local (0, 1) rotated a quarter turn is (−1, 0) from the ball; B's local (2, −1.5)
+  // from the capsule at (−2, 2): the same world point.
   CHECK(log.points[log.points.size() - 2] == Vec2{0_q32, 0.5_q32});
-  CHECK(log.points[log.points.size() - 1] == Vec2{-2_q32, 2_q32});
+  CHECK(log.points[log.points.size() - 1] == Vec2{0_q32, 0.5_q32});
   CHECK(log.aabbs == 0);
   CHECK(log.contacts == 0);
 

@@ -26,7 +26,9 @@ TEST_CASE("state fields: the encoded physics records have the sizes their visito
     SUCCEED("sizes are checked on 64-bit hosts only");
     return;
   }
-  CHECK(sizeof(WorldDef) == 144);      // visit_world_def
+  // visit_world_def; the last 32 bytes (worker_count and the task callbacks)
+  // are deliberately not state: results are the same for every worker count.
+  CHECK(sizeof(WorldDef) == 176);
   CHECK(sizeof(Body) == 80);           // visit_body (with BodySim)
   CHECK(sizeof(BodySim) == 152);       // visit_body
   CHECK(sizeof(Shape) == 112);         // visit_shape
