@@ -29,6 +29,8 @@
 // The last error is thread-local (one code and one std::string per thread).
 #include "tandem_c_internal.h"
 
+#include <algorithm>
+
 #ifndef TANDEM_C_VERSION_STRING
 #define TANDEM_C_VERSION_STRING "0.0.0"
 #endif
@@ -205,6 +207,24 @@ tandem_status tandem_world_step(tandem_world_id world, tandem_q32 time_step, uin
   });
 }
 
+tandem_status tandem_world_step_ex(tandem_world_id world, tandem_q32 time_step, tandem_step_result* out_result) {
+  return guard("tandem_world_step_ex", [&] {
+    if (out_result != nullptr) std::memset(out_result, 0, sizeof *out_result);
+    const StepResult r = world_step(to_cpp(world), q(time_step));
+    if (out_result != nullptr && r.ok()) {
+      out_result->flags = r.flags;
+      out_result->task_status = code_of(r.task_status.code);
+      const size_t n = std::min(r.task_status.message.size(), sizeof out_result->task_message - 1);
+      std::memcpy(out_result->task_message, r.task_status.message.data(), n);
+    }
+    return status(r.status);
+  });
+}
+tandem_status tandem_world_set_worker_count(tandem_world_id world, int32_t worker_count) {
+  return guard("tandem_world_set_worker_count",
+               [&] { return status(world_set_worker_count(to_cpp(world), worker_count)); });
+}
+int32_t tandem_world_worker_count(tandem_world_id world) { return world_worker_count(to_cpp(world)); }
 bool tandem_world_is_locked(tandem_world_id world) { return world_is_locked(to_cpp(world)); }
 tandem_world_def tandem_world_get_def(tandem_world_id world) {
   return guard_value(tandem_default_world_def(), [&] { return to_c(world_def(to_cpp(world))); });

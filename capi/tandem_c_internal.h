@@ -203,6 +203,15 @@ void f(E& a, I& b) {  // enums cross as their number
   if constexpr (ToCpp) a = static_cast<E>(b); else b = static_cast<I>(a);
 }
 
+template <bool ToCpp, typename T>
+void f(T*& a, T*& b) {  // function and context pointers cross unchanged
+  if constexpr (ToCpp) a = b; else b = a;
+}
+// The C callback types are the C++ ones (plain function pointers, no C++ type).
+static_assert(std::is_same_v<tandem_task_fn, TaskFunction> && std::is_same_v<tandem_enqueue_task_fn, EnqueueTaskFunction> &&
+              std::is_same_v<tandem_finish_task_fn, FinishTaskFunction>);
+static_assert(TANDEM_MAX_WORKERS == k_max_workers && TANDEM_STEP_FLAG_TASK_FAILURE == k_step_flag_task_failure);
+
 template <bool D>
 void map(WorldDef& a, tandem_world_def& b) {
   f<D>(a.gravity, b.gravity), f<D>(a.sub_step_count, b.sub_step_count);
@@ -213,6 +222,8 @@ void map(WorldDef& a, tandem_world_def& b) {
   f<D>(a.max_linear_speed, b.max_linear_speed), f<D>(a.bounds, b.bounds);
   f<D>(a.enable_sleep, b.enable_sleep), f<D>(a.enable_continuous, b.enable_continuous);
   f<D>(a.broad_phase, b.broad_phase), f<D>(a.user_data, b.user_data), f<D>(a.internal_cookie, b.internal_cookie);
+  f<D>(a.worker_count, b.worker_count), f<D>(a.enqueue_task, b.enqueue_task), f<D>(a.finish_task, b.finish_task);
+  f<D>(a.user_task_context, b.user_task_context);
 }
 template <bool D>
 void map(BodyDef& a, tandem_body_def& b) {

@@ -3,6 +3,8 @@
 // (design and how to add a function: tandem_c_core.cpp's top comment).
 #include "tandem_c_internal.h"
 
+#include "replay/rollback.h"
+
 using namespace tandem_c_internal;
 
 // --- snapshots and hashes ---------------------------------------------------------------------
@@ -570,4 +572,41 @@ tandem_status tandem_command_list_push(tandem_command_list* list, const tandem_c
     list->out->push_back(std::move(c));
     return succeed();
   });
+}
+
+// --- compact rollback snapshots (replay/rollback.h) ------------------------------
+struct tandem_rollback_buffer {
+  RollbackBuffer buffer;
+};
+static_assert(TANDEM_ROLLBACK_FORMAT_VERSION == k_rollback_format_version);
+
+tandem_status tandem_rollback_buffer_create(tandem_rollback_buffer** out_buffer) {
+  if (out_buffer == nullptr) return null_pointer("tandem_rollback_buffer_create", "out_buffer");
+  return guard("tandem_rollback_buffer_create", [&] {
+    *out_buffer = new tandem_rollback_buffer();
+    return succeed();
+  });
+}
+void tandem_rollback_buffer_free(tandem_rollback_buffer* buffer) { delete buffer; }
+tandem_status tandem_rollback_buffer_copy(tandem_rollback_buffer* dst, const tandem_rollback_buffer* src) {
+  if (dst == nullptr) return null_pointer("tandem_rollback_buffer_copy", "dst");
+  if (src == nullptr) return null_pointer("tandem_rollback_buffer_copy", "src");
+  return guard("tandem_rollback_buffer_copy", [&] {
+    if (dst != src) dst->buffer = src->buffer;
+    return succeed();
+  });
+}
+tandem_status tandem_rollback_save(tandem_world_id world, tandem_rollback_buffer* buffer) {
+  if (buffer == nullptr) return null_pointer("tandem_rollback_save", "buffer");
+  return guard("tandem_rollback_save", [&] { return status(rollback_save(to_cpp(world), &buffer->buffer)); });
+}
+tandem_status tandem_rollback_restore(tandem_world_id world, const tandem_rollback_buffer* buffer) {
+  if (buffer == nullptr) return null_pointer("tandem_rollback_restore", "buffer");
+  return guard("tandem_rollback_restore", [&] { return status(rollback_restore(to_cpp(world), buffer->buffer)); });
+}
+uint64_t tandem_rollback_hash(const tandem_rollback_buffer* buffer) {
+  return buffer == nullptr ? 0 : rollback_hash(buffer->buffer);
+}
+size_t tandem_rollback_image_size(const tandem_rollback_buffer* buffer) {
+  return buffer == nullptr ? 0 : rollback_image_size(buffer->buffer);
 }

@@ -26,7 +26,8 @@ extern "C" {
 #endif
 
 /** The version of this header's ABI (bumped on any incompatible change). */
-#define TANDEM_C_ABI_VERSION 2  /* 2: joints, profile, session; joint_count and joint commands appended */
+#define TANDEM_C_ABI_VERSION 3  /* 2: joints, profile, session; joint_count and joint commands appended;
+                                   3: tandem_world_def gained worker_count and the task callbacks */
 
 /* ------------------------------------------------------------------------ */
 /* Scalars, status                                                           */
@@ -167,6 +168,31 @@ typedef struct tandem_scene_id { uint32_t index1, generation; } tandem_scene_id;
 
 /** Flags raised by tandem_world_step. */
 #define TANDEM_STEP_FLAG_BODY_LEFT_BOUNDS 1u
+/** The user task system (tandem_world_def.enqueue_task / finish_task)
+ * misbehaved in this step; tandem_step_result.task_status says how. The step
+ * was still completed in full, with the same bits as a correct task system. */
+#define TANDEM_STEP_FLAG_TASK_FAILURE 2u
+
+/** Most worker threads a world may use (tandem_world_def.worker_count). */
+#define TANDEM_MAX_WORKERS 16
+
+/** One piece of a step's parallel work (physics/defs.h TaskFunction): call
+ * it with a sub-range [begin, end) of the items [0, item_count) that
+ * enqueue_task received, and the task_context it received, from any thread.
+ * Every item must be covered by exactly one call between enqueue_task and the
+ * return of finish_task; the order and the threads do not change any bit. */
+typedef void (*tandem_task_fn)(int32_t begin, int32_t end, void* task_context);
+/** A user task system's enqueue: start running `task` over [0, item_count)
+ * (item_count >= 1) in ranges of at least min_range items (a hint) and return
+ * a non-NULL handle for finish_task. `user_context` is
+ * tandem_world_def.user_task_context. NULL is reported as a task failure
+ * (the items then run on the stepping thread; finish_task is not called). */
+typedef void* (*tandem_enqueue_task_fn)(tandem_task_fn task, int32_t item_count, int32_t min_range,
+                                        void* task_context, void* user_context);
+/** A user task system's finish: return only when every item of the task
+ * behind `user_task` has run. Called once per successful enqueue_task, on the
+ * stepping thread, before the step goes on. */
+typedef void (*tandem_finish_task_fn)(void* user_task, void* user_context);
 
 /** Settings of a world (physics/defs.h WorldDef). Make with
  * tandem_default_world_def(), then change fields. */
@@ -186,6 +212,15 @@ typedef struct tandem_world_def {
   bool enable_continuous;             /**< default true */
   int32_t broad_phase;                /**< TANDEM_BROAD_PHASE_*; default naive */
   uint64_t user_data;                 /**< any integer; default 0 */
+  /** Threads that run a step, 1…TANDEM_MAX_WORKERS; default 1. Results are
+   * bit-identical for every value. Without task callbacks the world owns a
+   * pool of worker_count − 1 threads. */
+  int32_t worker_count;
+  /** Optional user task system (both or neither), used when worker_count > 1:
+   * each parallel stage is one enqueue_task / finish_task pair. */
+  tandem_enqueue_task_fn enqueue_task;
+  tandem_finish_task_fn finish_task;  /**< see enqueue_task; default NULL */
+  void* user_task_context;            /**< passed to enqueue_task and finish_task; default NULL */
   int32_t internal_cookie;            /**< set by tandem_default_world_def; do not touch */
 } tandem_world_def;
 

@@ -447,6 +447,46 @@ TANDEM_C_API tandem_status tandem_scene_body(tandem_scene_id scene, tandem_world
  * a world built from it. */
 TANDEM_C_API tandem_status tandem_scene_apply_inputs(tandem_scene_id scene, tandem_world_id world, int64_t tick);
 
+/* ------------------------------------------------------------------------ */
+/* Compact rollback snapshots (replay/rollback.h)                            */
+/* ------------------------------------------------------------------------ */
+
+/** The version of the compact rollback image (same build only: no
+ * compatibility promise across versions; use tandem_world_snapshot for
+ * files and other machines). */
+#define TANDEM_ROLLBACK_FORMAT_VERSION 1
+
+/** A reusable compact rollback snapshot (RollbackBuffer): a canonical image
+ * of only what the next step cannot recompute, a few hundred bytes per
+ * moving body, for netcode that saves every tick. Library-owned; made by
+ * tandem_rollback_buffer_create, freed by tandem_rollback_buffer_free. Not
+ * thread-safe: one thread at a time per buffer. */
+typedef struct tandem_rollback_buffer tandem_rollback_buffer;
+
+/** Creates an empty buffer (*out_buffer; hash 0, size 0). */
+TANDEM_C_API tandem_status tandem_rollback_buffer_create(tandem_rollback_buffer** out_buffer);
+/** Frees a buffer (NULL: nothing happens). */
+TANDEM_C_API void tandem_rollback_buffer_free(tandem_rollback_buffer* buffer);
+/** Copies src into dst (a ring of saved ticks; dst's capacity is reused). */
+TANDEM_C_API tandem_status tandem_rollback_buffer_copy(tandem_rollback_buffer* dst, const tandem_rollback_buffer* src);
+/** Saves the world's state into the buffer (replaced; no allocation after
+ * the first save of the same scene). Refuses an invalid or locked world;
+ * the buffer is unchanged then. */
+TANDEM_C_API tandem_status tandem_rollback_save(tandem_world_id world, tandem_rollback_buffer* buffer);
+/** Replaces the world's state with the buffer's; every later step is
+ * bit-identical to the run it was saved from. Refuses an invalid or locked
+ * world and an empty or inconsistent buffer (the message names the byte
+ * offset and field); a refused restore changes nothing. Before the next
+ * step tandem_world_state_hash of the restored world may differ from the
+ * saved tick's (omitted manifold geometry); tandem_rollback_hash does not. */
+TANDEM_C_API tandem_status tandem_rollback_restore(tandem_world_id world, const tandem_rollback_buffer* buffer);
+/** XXH3-64 of the buffer's image (0 for an empty or NULL buffer); equal
+ * states give equal hashes, whatever the broad phase. */
+TANDEM_C_API uint64_t tandem_rollback_hash(const tandem_rollback_buffer* buffer);
+/** The image's size in bytes (what a peer would store per tick; 0 for an
+ * empty or NULL buffer). */
+TANDEM_C_API size_t tandem_rollback_image_size(const tandem_rollback_buffer* buffer);
+
 #ifdef __cplusplus
 }  /* extern "C" */
 #endif

@@ -43,6 +43,10 @@ typedef struct tandem_world_profile {
   int64_t total_ns;
 } tandem_world_profile;
 
+/* The C++ RAII wrappers make_unique_world / UniqueWorld (physics/tandem.h)
+ * have no C counterpart on purpose: in C, pair tandem_create_world with
+ * tandem_destroy_world (bindings wrap them in their own owners). */
+
 /** Creates a world from a definition made by tandem_default_world_def. */
 TANDEM_C_API tandem_status tandem_create_world(const tandem_world_def* def, tandem_world_id* out_world);
 /** Destroys a world and everything in it. */
@@ -54,6 +58,24 @@ TANDEM_C_API tandem_status tandem_world_check(tandem_world_id world);
 /** Advances the world by time_step s (raw Q32.32, 0…1 s). *out_flags
  * (may be NULL) receives TANDEM_STEP_FLAG_* bits. */
 TANDEM_C_API tandem_status tandem_world_step(tandem_world_id world, tandem_q32 time_step, uint32_t* out_flags);
+/** The outcome of tandem_world_step_ex (physics/tandem.h StepResult). */
+typedef struct tandem_step_result {
+  uint32_t flags;             /**< TANDEM_STEP_FLAG_* bits */
+  tandem_status task_status;  /**< TANDEM_OK, or with TANDEM_STEP_FLAG_TASK_FAILURE what the task system did wrong */
+  /** task_status's message ("" when TANDEM_OK), NUL-terminated, cut to fit. */
+  char task_message[512];
+} tandem_step_result;
+
+/** tandem_world_step with the full result: *out_result (may be NULL) is
+ * filled when the step was accepted (zeroed otherwise). The returned status
+ * is the step's; a task failure does not make it fail (see task_status). */
+TANDEM_C_API tandem_status tandem_world_step_ex(tandem_world_id world, tandem_q32 time_step,
+                                                tandem_step_result* out_result);
+/** Sets the number of threads that run the next steps, 1…TANDEM_MAX_WORKERS
+ * (results stay bit-identical). Refused inside a step and out of range. */
+TANDEM_C_API tandem_status tandem_world_set_worker_count(tandem_world_id world, int32_t worker_count);
+/** The world's worker count (1 for an invalid handle). */
+TANDEM_C_API int32_t tandem_world_worker_count(tandem_world_id world);
 /** True while the world is inside tandem_world_step. */
 TANDEM_C_API bool tandem_world_is_locked(tandem_world_id world);
 /** The world's settings as a definition (default def for an invalid handle). */
