@@ -42,6 +42,10 @@ public struct WorldDef {
   public byte EnableSleep, EnableContinuous;
   public int BroadPhase;
   public ulong UserData;
+  /// <summary>Threads that run a step, 1…16 (results identical for every value).</summary>
+  public int WorkerCount;
+  /// <summary>tandem_enqueue_task_fn / tandem_finish_task_fn (function pointers, IntPtr.Zero: none) and their context.</summary>
+  public IntPtr EnqueueTask, FinishTask, UserTaskContext;
   public int InternalCookie;
 }
 
@@ -122,6 +126,14 @@ public static class Native {
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_create_world(ref WorldDef def, out WorldId world);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_destroy_world(WorldId world);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_world_step(WorldId world, long timeStep, out uint flags);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_world_set_worker_count(WorldId world, int workerCount);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_world_worker_count(WorldId world);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_rollback_buffer_create(out IntPtr buffer);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern void tandem_rollback_buffer_free(IntPtr buffer);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_rollback_save(WorldId world, IntPtr buffer);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_rollback_restore(WorldId world, IntPtr buffer);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern ulong tandem_rollback_hash(IntPtr buffer);
+  [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern UIntPtr tandem_rollback_image_size(IntPtr buffer);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern ulong tandem_world_state_hash(WorldId world);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_world_snapshot(WorldId world, byte[] bytes, UIntPtr capacity, out UIntPtr size);
   [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)] public static extern int tandem_world_restore(WorldId world, byte[] bytes, UIntPtr size);

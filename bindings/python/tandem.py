@@ -83,7 +83,8 @@ class WorldDef(Structure):
                 ("joint_damping_ratio", q32), ("restitution_threshold", q32), ("hit_event_threshold", q32),
                 ("max_linear_speed", q32), ("bounds", AABB), ("enable_sleep", c_bool),
                 ("enable_continuous", c_bool), ("broad_phase", c_int32), ("user_data", c_uint64),
-                ("internal_cookie", c_int32)]
+                ("worker_count", c_int32), ("enqueue_task", c_void_p), ("finish_task", c_void_p),
+                ("user_task_context", c_void_p), ("internal_cookie", c_int32)]
 
 
 class BodyDef(Structure):
@@ -226,6 +227,14 @@ _fn("tandem_world_bodies", _status, WorldId, POINTER(BodyId), c_int32, POINTER(c
 _fn("tandem_world_snapshot", _status, WorldId, POINTER(c_uint8), c_size_t, POINTER(c_size_t))
 _fn("tandem_world_restore", _status, WorldId, POINTER(c_uint8), c_size_t)
 _fn("tandem_create_world_from_snapshot", _status, POINTER(c_uint8), c_size_t, POINTER(WorldId))
+_fn("tandem_world_set_worker_count", _status, WorldId, c_int32)
+_fn("tandem_world_worker_count", c_int32, WorldId)
+_fn("tandem_rollback_buffer_create", _status, POINTER(c_void_p))
+_fn("tandem_rollback_buffer_free", None, c_void_p)
+_fn("tandem_rollback_save", _status, WorldId, c_void_p)
+_fn("tandem_rollback_restore", _status, WorldId, c_void_p)
+_fn("tandem_rollback_hash", c_uint64, c_void_p)
+_fn("tandem_rollback_image_size", c_size_t, c_void_p)
 _fn("tandem_create_body", _status, WorldId, POINTER(BodyDef), POINTER(BodyId))
 _fn("tandem_destroy_body", _status, BodyId)
 _fn("tandem_body_is_valid", c_bool, BodyId)
@@ -350,6 +359,36 @@ class _Owned:
         self.close()
 
 
+class RollbackBuffer(_Owned):
+    """A compact rollback snapshot (tandem_rollback_buffer, replay/rollback.h):
+    a few hundred bytes per moving body, for netcode that saves every tick.
+    Same build only (files and other machines: World.snapshot()). Freed by
+    close() or at garbage collection."""
+
+    _destroy = staticmethod(lambda handle: lib.tandem_rollback_buffer_free(handle) or 0)
+
+    def __init__(self):
+        handle = c_void_p()
+        _check(lib.tandem_rollback_buffer_create(byref(handle)))
+        self.id = handle
+
+    def save(self, world):
+        """Replaces the buffer's contents with the world's state."""
+        _check(lib.tandem_rollback_save(world.id, self.id))
+
+    def restore(self, world):
+        """Replaces the world's state with the buffer's."""
+        _check(lib.tandem_rollback_restore(world.id, self.id))
+
+    def hash(self):
+        """XXH3-64 of the compact image (0 when empty); equal states, equal hashes."""
+        return lib.tandem_rollback_hash(self.id)
+
+    def __len__(self):
+        """The compact image's size in bytes."""
+        return lib.tandem_rollback_image_size(self.id)
+
+
 class World(_Owned):
     """A physics world (destroyed by close() or at garbage collection)."""
 
@@ -421,6 +460,28 @@ class World(_Owned):
         """Replaces the state with an image (validated first; refused: unchanged)."""
         buf = (c_uint8 * len(image)).from_buffer_copy(image)
         _check(lib.tandem_world_restore(self.id, buf, len(image)))
+
+    @property
+    def worker_count(self):
+        """Threads that run a step (World(worker_count=4) or set it between
+        steps, 1…16); the results are bit-identical for every value."""
+        return lib.tandem_world_worker_count(self.id)
+
+    @worker_count.setter
+    def worker_count(self, value):
+        _check(lib.tandem_world_set_worker_count(self.id, value))
+
+    def rollback_save(self, buffer=None):
+        """Saves the state into a compact RollbackBuffer (a new one, or
+        `buffer`, reused) and returns it; see RollbackBuffer."""
+        buffer = buffer if buffer is not None else RollbackBuffer()
+        buffer.save(self)
+        return buffer
+
+    def rollback_restore(self, buffer):
+        """Restores a RollbackBuffer (refused: unchanged); later steps are
+        bit-identical to the run it was saved from."""
+        buffer.restore(self)
 
     def create_joint(self, kind, body_a, body_b, anchor_a=(0, 0), anchor_b=(0, 0), **fields):
         """Creates a joint of `kind` ("revolute", "distance", "weld", "prismatic",

@@ -92,6 +92,42 @@ class PythonicLayer(unittest.TestCase):
         for w in (world, copy, again):
             w.close()
 
+    def test_workers_and_rollback_buffer(self):
+        dt = tandem.q(tandem.Fraction(1, 60))
+        plain, _, _ = self.make_world()
+        chain = []
+        for _ in range(60):
+            plain.step(dt)
+            chain.append(plain.state_hash())
+        world = tandem.World(worker_count=2)
+        self.assertEqual(world.worker_count, 2)
+        world.close()
+        # Two workers, then three from tick 20 on; a rollback at tick 30.
+        world, _, _ = self.make_world()
+        world.worker_count = 2
+        with self.assertRaises(tandem.TandemError) as bad:
+            world.worker_count = 17
+        self.assertIn("worker_count 17 is outside [1, 16]", str(bad.exception))
+        self.assertEqual(world.worker_count, 2)
+        saved = None
+        for tick in range(40):
+            if tick == 20:
+                world.worker_count = 3
+            if tick == 30:
+                saved = world.rollback_save()
+            world.step(dt)
+            self.assertEqual(world.state_hash(), chain[tick])
+        self.assertGreater(len(saved), 0)
+        self.assertNotEqual(saved.hash(), 0)
+        world.rollback_restore(saved)
+        self.assertEqual(world.rollback_save().hash(), saved.hash())
+        for tick in range(30, 60):
+            world.step(dt)
+            self.assertEqual(world.state_hash(), chain[tick])
+        saved.close()
+        for w in (plain, world):
+            w.close()
+
     def test_numbers_are_exact(self):
         self.assertEqual(tandem.q(3), 3 << 32)
         self.assertEqual(tandem.q("1.5"), 3 << 31)
