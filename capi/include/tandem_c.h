@@ -24,7 +24,10 @@
  * CALLBACKS are plain function pointers with a `void* context` the caller
  * chooses (the session's transport and game, payload handlers, progress,
  * the custom filter). They run on the calling thread, inside the call that
- * triggers them, and must not destroy the object that calls them.
+ * triggers them, and must not destroy the object that calls them. The
+ * exception: a world's task system (tandem_world_def.enqueue_task /
+ * finish_task, used when worker_count > 1) may run the tandem_task_fn it is
+ * handed on any thread, in any order, before finish_task returns.
  *
  * ERRORS. A function that can fail returns a tandem_status (TANDEM_OK = 0).
  * Every such function records the outcome as the CALLING THREAD's last error:
@@ -48,7 +51,8 @@
  * matching tandem_free_*() function and by nothing else.
  *
  * THREADS. As the C++ API: worlds are independent, one world is used by one
- * thread at a time; the last error is per thread.
+ * thread at a time (a step may use worker_count threads inside; the bits do
+ * not depend on it); the last error is per thread.
  *
  * FILES. This umbrella includes the parts, each usable alone:
  *   tandem_c_base.h     status codes, numbers, value types, handles, definitions, geometry
