@@ -30,6 +30,21 @@ extern "C" void reverse_finish(void* user_task, void* user_context) {
   if (user_task == &tasks->handle) ++tasks->finished;
 }
 
+// A task system that runs each task on a new thread, items in reverse, two
+// at a time; finish_task joins it.
+extern "C" void* thread_enqueue(tandem_task_fn task, int32_t item_count, int32_t, void* task_context,
+                                void* user_context) {
+  ++*static_cast<int32_t*>(user_context);
+  return new std::thread([=] {
+    for (int32_t end = item_count; end > 0; end -= 2) task(end >= 2 ? end - 2 : 0, end, task_context);
+  });
+}
+extern "C" void thread_finish(void* user_task, void*) {
+  auto* thread = static_cast<std::thread*>(user_task);
+  thread->join();
+  delete thread;
+}
+
 // A broken task system: enqueue_task refuses every task (returns NULL).
 extern "C" void* null_enqueue(tandem_task_fn, int32_t, int32_t, void*, void* user_context) {
   ++*static_cast<int32_t*>(user_context);
@@ -100,6 +115,15 @@ TEST_CASE("C worlds with 2 workers and with a C task system hash like 1 worker",
   CHECK(tasks.enqueued > 0);  // the callbacks really ran the work
   CHECK(tasks.finished == tasks.enqueued);
   CHECK(tasks.items >= tasks.enqueued);
+
+  int32_t threaded_tasks = 0;
+  tandem_world_def threaded = one;
+  threaded.worker_count = 3;
+  threaded.enqueue_task = thread_enqueue;
+  threaded.finish_task = thread_finish;
+  threaded.user_task_context = &threaded_tasks;
+  CHECK(run_with(threaded) == reference);
+  CHECK(threaded_tasks > 0);
 
   // The settings read back, and the worker count changes between steps.
   tandem_world_id world{};
