@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "physics/contact_solver.h"
@@ -107,5 +108,29 @@ void stage_store_joints(World* world, StepContext* context);
 /// (joint_solver.cpp), repeated, so a body that continuous collision stopped
 /// short does not leave its joint partners behind.
 void stage_project_joints(World* world, StepContext* context);
+
+/// Helpers shared by joint.cpp (creation, destruction) and joint_api.cpp
+/// (queries, setters). Messages read "function: Def.field value unit ...".
+namespace joint_detail {
+/// The joint record at a live index.
+Joint& joint_at(World* world, int32_t index);
+/// Exact decimal text of a value, for messages.
+std::string q(Q32 v);
+/// True when lo ≤ value ≤ hi; otherwise writes "function: def_name.field value
+/// unit is outside [lo, hi] unit" to *out.
+bool check_range(const char* function, const char* def_name, const char* field, Q32 value, Q32 lo, Q32 hi,
+                 const char* unit, Status* out);
+/// True when both components lie within ±limit; otherwise writes the field and range.
+bool check_vec(const char* function, const char* def_name, const char* field, Vec2 v, Q32 limit, const char* unit,
+               Status* out);
+/// True when lo ≤ hi; otherwise names both fields.
+bool check_order(const char* function, const char* def_name, const char* lo_name, Q32 lo, const char* hi_name, Q32 hi,
+                 Status* out);
+/// check_range over [−π, π] rad.
+bool check_angle(const char* function, const char* def_name, const char* field, Q32 angle, Status* s);
+/// Resolves a joint handle (refusing null, stale, foreign and, when
+/// `mutating`, locked worlds) to its world and index.
+Status resolve_joint(JointId id, const char* function, bool mutating, World** out_world, int32_t* out_index);
+}  // namespace joint_detail
 
 }  // namespace tandem

@@ -231,15 +231,18 @@ struct StateDifference {
   std::string kind;           ///< record kind ("body")
   int64_t index = 0;          ///< record index
   int64_t index2 = -1;        ///< second key (contacts, pairs) or −1
-  uint32_t generation = 0;
+  uint32_t generation = 0;    ///< the record's slot generation in a (the present side if missing)
+  uint32_t generation_b = 0;  ///< the same in b (equal to `generation` when a record is missing)
   std::string field;          ///< differing field; empty when a record is missing on one side
   int64_t value_a = 0;        ///< raw values
   int64_t value_b = 0;
   bool is_q32 = false;
   bool missing_in_a = false;  ///< the record exists only in b
   bool missing_in_b = false;  ///< the record exists only in a
-  /// "body 3 (generation 1) linear_velocity.x: a = 1.5 (raw 6442450944), b =
-  /// ..." or "identical"; Q32 values are printed as exact decimals.
+  /// "body 3 linear_velocity.x: a = 1.5 (raw 6442450944), b = ..." or
+  /// "identical"; Q32 values are printed as exact decimals. The generation
+  /// is named only when the two sides' generations differ: "joint 3
+  /// (generation 1 in a, 2 in b) motor_impulse: ...".
   std::string describe() const;
 };
 

@@ -155,7 +155,12 @@ std::string StateDifference::describe() const {
   if (!differs) return "identical";
   std::string who = kind + " " + std::to_string(index);
   if (index2 >= 0) who = kind + " (" + std::to_string(index) + ", " + std::to_string(index2) + ")";
-  if (generation != 0) who += " (generation " + std::to_string(generation) + ")";
+  // The generation is noise while both sides agree (the index names the
+  // record); it is printed only when the two sides' slots were reused a
+  // different number of times, and not again for the "generation" field.
+  if (!missing_in_a && !missing_in_b && generation != generation_b && field != "generation") {
+    who += " (generation " + std::to_string(generation) + " in a, " + std::to_string(generation_b) + " in b)";
+  }
   if (missing_in_a) return who + ": only in b";
   if (missing_in_b) return who + ": only in a";
   const auto text = [&](int64_t v) {
@@ -197,6 +202,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       d.index = r.index;
       d.index2 = r.index2;
       d.generation = r.generation;
+      d.generation_b = r.generation;
       d.missing_in_b = a_first;
       d.missing_in_a = !a_first;
       return d;
@@ -211,6 +217,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
         d.index = ra.index;
         d.index2 = ra.index2;
         d.generation = ra.generation;
+        d.generation_b = rb.generation;
         d.field = fa.name == fb.name ? fa.name : fa.name + " / " + fb.name;
         d.value_a = fa.value;
         d.value_b = fb.value;
@@ -224,6 +231,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       d.index = ra.index;
       d.index2 = ra.index2;
       d.generation = ra.generation;
+      d.generation_b = rb.generation;
       const bool a_longer = ra.fields.size() > rb.fields.size();
       d.field = (a_longer ? ra.fields[fields] : rb.fields[fields]).name + " (present on one side only)";
       d.value_a = static_cast<int64_t>(ra.fields.size());
@@ -236,6 +244,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       d.index = ra.index;
       d.index2 = ra.index2;
       d.generation = ra.generation;
+      d.generation_b = rb.generation;
       d.field = "generation";
       d.value_a = ra.generation;
       d.value_b = rb.generation;
@@ -250,6 +259,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
     d.index = r.index;
     d.index2 = r.index2;
     d.generation = r.generation;
+    d.generation_b = r.generation;
     d.missing_in_b = a_longer;
     d.missing_in_a = !a_longer;
   }

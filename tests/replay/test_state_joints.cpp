@@ -188,7 +188,28 @@ TEST_CASE("state: a corrupt joint record is refused and the diff names the joint
   CHECK(diff.kind == "joint");
   CHECK(diff.index == 0);
   CHECK(diff.field == "motor_speed");
-  CHECK(diff.describe().find("joint 0 (generation 1) motor_speed: a = 1") == 0);
+  CHECK(diff.describe().find("joint 0 motor_speed: a = 1") == 0);
+}
+
+TEST_CASE("state: the diff names a record's generation only when the two sides differ", "[replay][state][joint]") {
+  StateDifference d;
+  d.differs = true;
+  d.kind = "joint";
+  d.index = 3;
+  d.generation = 1;
+  d.generation_b = 1;
+  d.field = "motor_impulse";
+  d.value_a = 1;
+  d.value_b = 2;
+  CHECK(d.describe() == "joint 3 motor_impulse: a = 1, b = 2");
+  d.kind = "body";
+  d.index = 4;
+  d.generation_b = 2;
+  CHECK(d.describe() == "body 4 (generation 1 in a, 2 in b) motor_impulse: a = 1, b = 2");
+  d.field = "generation";  // the field already names both generations
+  CHECK(d.describe() == "body 4 generation: a = 1, b = 2");
+  d.missing_in_b = true;  // one side only: nothing to compare
+  CHECK(d.describe() == "body 4: only in a");
 }
 
 namespace {
