@@ -57,7 +57,7 @@ typedef struct tandem_diff_report {
   uint64_t hash_a, hash_b;
   bool located;             /**< difference_text names the record and field */
   uint64_t located_tick;
-  char* difference_text;    /**< "body 3 (generation 1) linear_velocity.x: a = ..., b = ..."; owned */
+  char* difference_text;    /**< "body 3 linear_velocity.x: a = ..., b = ..."; owned */
   char* text;               /**< the full human-readable report; owned */
   uint64_t ticks_compared;  /**< ticks whose states were compared */
   bool inputs_differ;       /**< replays: the recorded inputs differ ... */
@@ -105,7 +105,7 @@ typedef struct tandem_state_difference {
   char* field;           /**< "" when a record is missing on one side */
   int64_t value_a, value_b;
   bool is_q32, missing_in_a, missing_in_b;
-  char* text;            /**< StateDifference::describe(): "body 3 (generation 1) ..." or "identical" */
+  char* text;            /**< StateDifference::describe(): "body 3 linear_velocity.x: ..." (the generation only when the sides differ) or "identical" */
 } tandem_state_difference;
 
 /** Decodes and validates a state image (the checks of tandem_world_restore;
