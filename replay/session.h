@@ -61,13 +61,13 @@
 // to the game's largest tick, the session's own code allocates nothing per
 // tick without recording (with recording, each confirmed tick is appended to
 // the in-memory replay). Measured with a counting operator new (2 peers,
-// arena, 300 frames): the allocations that remain come from applying the
-// engine commands, in proportion to the ticks simulated, re-simulated ones
-// included. apply_command itself checks the handle without building text
-// (2026-11-25); what remains is inside physics/: body_apply_force builds its
-// handle description and one message per limit check even on success (13
-// allocations per call measured with a counting operator new;
-// apply_linear_impulse 7, set_linear_velocity 4).
+// arena, 300 frames): applying the engine commands allocated in proportion to
+// the ticks simulated, because the body functions built their error text even
+// on success; since 2026-11-25 they build it only on a refusal, and
+// apply_command of apply_force, apply_linear_impulse and set_linear_velocity
+// on a live body allocates nothing (tests/replay/test_command_allocations.cpp).
+// Per-tick snapshots are compact rollback images (replay/rollback.h): a
+// save into a slot that held the same scene does not allocate either.
 //
 // ORDER. Everything the simulation sees is ordered by data: inputs by
 // (tick, player), commands in the order the callback produced them. Packet
@@ -83,6 +83,7 @@
 #include "physics/tandem.h"
 #include "replay/commands.h"
 #include "replay/replay_file.h"
+#include "replay/rollback.h"
 #include "replay/session_packet.h"
 
 namespace tandem {
@@ -282,6 +283,7 @@ class Session {
   bool input_known(uint32_t player, uint64_t tick) const;
   void store_input(uint32_t player, uint64_t tick, const uint8_t* bytes);
   uint64_t all_known_through() const;
+  Status ring_slot(uint64_t tick, size_t* slot) const;  // the snapshot slot holding `tick`, or why none does
   bool simulate(uint64_t tick);
   void rollback();
   void confirm();
@@ -336,8 +338,11 @@ class Session {
   std::vector<uint64_t> last_heard_frame_;
   std::vector<uint8_t> gone_;
 
-  // Snapshot ring (history_ticks slots, tick % history_ticks).
-  std::vector<std::vector<uint8_t>> snap_world_;
+  // Snapshot ring (history_ticks slots, tick % history_ticks): compact
+  // rollback images (replay/rollback.h); the portable image of a slot only
+  // for keyframe ticks while recording (the replay's keyframes).
+  std::vector<RollbackBuffer> snap_world_;
+  std::vector<std::vector<uint8_t>> snap_keyframe_;
   std::vector<std::vector<uint8_t>> snap_game_;
   std::vector<uint64_t> snap_tick_;
   std::vector<std::vector<Command>> snap_commands_;  // recording only
