@@ -253,7 +253,13 @@ class Session {
   /// without record_replay.
   std::vector<uint8_t> replay_bytes();
   /// The state image (replay/state.h) of a tick still in the snapshot ring
-  /// (within history_ticks of current_tick(), ≤ current_tick()).
+  /// (within history_ticks of current_tick(), ≤ current_tick()). Made by
+  /// restoring the ring's compact image (replay/rollback.h) into a scratch
+  /// world: bodies, joints, contact impulses and feature ids are exact; the
+  /// manifold geometry of contacts between simulated bodies reads as zero
+  /// (the compact image omits it), alike on every peer, so `tandem diff` of
+  /// two peers' images names the first state that really differs. Its
+  /// world_state_hash is therefore not the tick's exchanged hash.
   Status state_image(uint64_t tick, std::vector<uint8_t>* out) const;
   /// Writes `prefix`.replay (when recording) and `prefix`.state: the image
   /// of the desync tick when desynced, else of the confirmed tick.
