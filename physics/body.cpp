@@ -1,4 +1,5 @@
-// body.cpp — bodies: creation, destruction, the body API, and mass data.
+// body.cpp — bodies: creation, destruction, the body API, and mass data
+// (forces and impulses: body_motion.cpp; shared checks: body_checks.h).
 //
 // Every mutating function follows one pattern: resolve the handle (which
 // refuses null, stale, foreign and locked), check every argument with quiet
@@ -16,25 +17,18 @@
 // mass and inverse mass.
 #include "physics/body.h"
 
+#include <string>
 #include <vector>
 
+#include "physics/body_checks.h"
 #include "physics/island.h"
 #include "physics/world.h"
 
 namespace tandem {
 
+using namespace body_checks;
+
 namespace {
-
-std::string q32_text(Q32 v) { return to_string(v); }
-
-Status invalid_argument(const char* function, const std::string& what, const std::string& why) {
-  return make_status(StatusCode::invalid_argument, std::string(function) + ": " + what + " " + why);
-}
-
-Body& body_at(World* w, int32_t i) { return w->bodies[static_cast<size_t>(i)]; }
-const Body& body_at(const World* w, int32_t i) { return w->bodies[static_cast<size_t>(i)]; }
-BodySim& sim_at(World* w, int32_t i) { return w->body_sims[static_cast<size_t>(i)]; }
-const BodySim& sim_at(const World* w, int32_t i) { return w->body_sims[static_cast<size_t>(i)]; }
 
 bool valid_type(BodyType type) {
   return type == BodyType::static_body || type == BodyType::kinematic_body || type == BodyType::dynamic_body;
@@ -49,113 +43,10 @@ const char* type_name(BodyType type) {
   return "unknown";
 }
 
-/// Refuses a point outside the world bounds.
-bool check_in_bounds(const World& w, const char* function, const char* what, Vec2 p, Status* out) {
-  if (aabb_contains_point(w.def.bounds, p)) return true;
-  *out = make_status(StatusCode::invalid_argument,
-                     std::string(function) + ": " + what + " " + format_vec2(p) + " m is outside the world bounds [" +
-                         format_vec2(w.def.bounds.lower) + ", " + format_vec2(w.def.bounds.upper) + "] m");
-  return false;
-}
-
-/// Refuses a speed above the world's maximum.
-bool check_speed(const World& w, const char* function, const std::string& what, Vec2 v, Status* out) {
-  if (!length_exceeds(v, w.def.max_linear_speed)) return true;
-  *out = invalid_argument(function, what, "is faster than the world's maximum linear speed " +
-                                              q32_text(w.def.max_linear_speed) + " m/s");
-  return false;
-}
-
-/// Refuses |ω| above k_max_angular_speed.
-bool check_angular_speed(const char* function, const std::string& what, Q32 w, Status* out) {
-  if (abs(w) <= k_max_angular_speed) return true;
-  *out = invalid_argument(function, what, q32_text(w) + " rad/s is outside [−" + q32_text(k_max_angular_speed) +
-                                              ", " + q32_text(k_max_angular_speed) + "] rad/s");
-  return false;
-}
-
-/// Refuses a value outside [lo, hi].
-bool check_closed(const char* function, const std::string& what, Q32 v, Q32 lo, Q32 hi, const char* unit,
-                  Status* out) {
-  if (lo <= v && v <= hi) return true;
-  *out = invalid_argument(function, what,
-                          q32_text(v) + " " + unit + " is outside [" + q32_text(lo) + ", " + q32_text(hi) + "] " + unit);
-  return false;
-}
-
 /// A velocity clamped to the world's maximum speed (after a centre shift).
 Vec2 clamp_speed(Vec2 v, Q32 max_speed) {
   if (!length_exceeds(v, max_speed)) return v;
   return v * (max_speed / length(v));
-}
-
-/// The shared path of the force functions. `at_point` false: at the centre.
-Status apply_force_impl(BodyId id, const char* function, Vec2 force, Vec2 point, bool at_point, bool wake_body) {
-  World* w = nullptr;
-  int32_t i = 0;
-  Status s = resolve_body(id, function, true, WorldId{}, &w, &i);
-  if (!s.ok()) return s;
-  Body& body = body_at(w, i);
-  BodySim& sim = sim_at(w, i);
-  if (body.type != BodyType::dynamic_body || !body.enabled || (!body.awake && !wake_body)) return s;
-  if (at_point && !check_in_bounds(*w, function, "point", point, &s)) return s;
-  const Vec2 f{add_quiet(sim.force.x, force.x), add_quiet(sim.force.y, force.y)};
-  if (!check_closed(function, describe(id) + " accumulated force x", f.x, -k_max_force, k_max_force, "N", &s) ||
-      !check_closed(function, describe(id) + " accumulated force y", f.y, -k_max_force, k_max_force, "N", &s)) {
-    return s;
-  }
-  Q32 torque = sim.torque;
-  if (at_point) {
-    const Vec2 r{point.x - sim.center.x, point.y - sim.center.y};  // both inside ±1e6 m: no saturation
-    torque = add_quiet(torque, cross_quiet(r, force));
-    if (!check_closed(function, describe(id) + " accumulated torque", torque, -k_max_torque, k_max_torque, "N·m",
-                      &s)) {
-      return s;
-    }
-  }
-  const Q32 ax = mul_quiet(sim.inv_mass, f.x), ay = mul_quiet(sim.inv_mass, f.y);
-  if (!check_closed(function, describe(id) + " acceleration x", ax, -k_max_linear_acceleration,
-                    k_max_linear_acceleration, "m/s²", &s) ||
-      !check_closed(function, describe(id) + " acceleration y", ay, -k_max_linear_acceleration,
-                    k_max_linear_acceleration, "m/s²", &s)) {
-    return s;
-  }
-  const Q32 alpha = mul_quiet(sim.inv_inertia, torque);
-  if (!check_closed(function, describe(id) + " angular acceleration", alpha, -k_max_angular_acceleration,
-                    k_max_angular_acceleration, "rad/s²", &s)) {
-    return s;
-  }
-  sim.force = f;
-  sim.torque = torque;
-  wake_body_island(w, i);
-  return s;
-}
-
-/// The shared path of the impulse functions.
-Status apply_impulse_impl(BodyId id, const char* function, Vec2 impulse, Q32 angular_impulse, Vec2 point,
-                          bool at_point, bool wake_body) {
-  World* w = nullptr;
-  int32_t i = 0;
-  Status s = resolve_body(id, function, true, WorldId{}, &w, &i);
-  if (!s.ok()) return s;
-  Body& body = body_at(w, i);
-  BodySim& sim = sim_at(w, i);
-  if (body.type != BodyType::dynamic_body || !body.enabled || (!body.awake && !wake_body)) return s;
-  if (at_point && !check_in_bounds(*w, function, "point", point, &s)) return s;
-  const Vec2 v{add_quiet(sim.linear_velocity.x, mul_quiet(sim.inv_mass, impulse.x)),
-               add_quiet(sim.linear_velocity.y, mul_quiet(sim.inv_mass, impulse.y))};
-  if (!check_speed(*w, function, "the velocity this impulse gives " + describe(id), v, &s)) return s;
-  Q32 angular = angular_impulse;
-  if (at_point) {
-    const Vec2 r{point.x - sim.center.x, point.y - sim.center.y};
-    angular = cross_quiet(r, impulse);
-  }
-  const Q32 omega = add_quiet(sim.angular_velocity, mul_quiet(sim.inv_inertia, angular));
-  if (!check_angular_speed(function, "the angular velocity this impulse gives " + describe(id), omega, &s)) return s;
-  sim.linear_velocity = v;
-  sim.angular_velocity = omega;
-  wake_body_island(w, i);
-  return s;
 }
 
 /// Shared path of the simple setters: resolve (mutating), then run `set`.
@@ -201,7 +92,7 @@ bool find_body(BodyId id, World** out_world, int32_t* out_index) {
 
 Status resolve_body(BodyId id, const char* function, bool mutating, WorldId expected_world, World** out_world,
                     int32_t* out_index) {
-  return resolve_handle(function, "body", describe(id), id.index1, id.generation, id.world, expected_world, mutating,
+  return resolve_handle(function, "body", id.index1, id.generation, id.world, expected_world, mutating,
                         &World::body_pool, out_world, out_index);
 }
 
@@ -375,7 +266,9 @@ Result<BodyId> create_body(WorldId world_id, const BodyDef& def) {
     s = invalid_argument(fn, "angular_velocity", "must be zero for a body with fixed rotation");
     return result;
   }
-  if (!check_speed(*w, fn, "linear_velocity " + format_vec2(def.linear_velocity) + " m/s", def.linear_velocity, &s) ||
+  if (!check_speed(
+          *w, fn, [&] { return "linear_velocity " + format_vec2(def.linear_velocity) + " m/s"; }, def.linear_velocity,
+          &s) ||
       !check_angular_speed(fn, "angular_velocity", def.angular_velocity, &s) ||
       !check_closed(fn, "linear_damping", def.linear_damping, Q32::zero(), k_max_damping, "1/s", &s) ||
       !check_closed(fn, "angular_damping", def.angular_damping, Q32::zero(), k_max_damping, "1/s", &s) ||
@@ -545,7 +438,7 @@ Status body_set_linear_velocity(BodyId id, Vec2 velocity) {
     if (body.type == BodyType::static_body) {
       return invalid_argument(fn, describe(id), "is static; a static body cannot move");
     }
-    if (!check_speed(*w, fn, "velocity " + format_vec2(velocity) + " m/s", velocity, &s)) return s;
+    if (!check_speed(*w, fn, [&] { return "velocity " + format_vec2(velocity) + " m/s"; }, velocity, &s)) return s;
     sim_at(w, i).linear_velocity = velocity;
     wake_body_island(w, i);
     return s;
@@ -583,52 +476,6 @@ Vec2 body_point_velocity(BodyId id, Vec2 world_point) {
     return Vec2{add_quiet(sim.linear_velocity.x, mul_quiet(-sim.angular_velocity, r.y)),
                 add_quiet(sim.linear_velocity.y, mul_quiet(sim.angular_velocity, r.x))};
   });
-}
-
-// ---------------------------------------------------------------------------
-// Forces and impulses
-// ---------------------------------------------------------------------------
-
-Status body_apply_force(BodyId id, Vec2 force, Vec2 world_point, bool wake_body) {
-  return apply_force_impl(id, "body_apply_force", force, world_point, true, wake_body);
-}
-
-Status body_apply_force_to_center(BodyId id, Vec2 force, bool wake_body) {
-  return apply_force_impl(id, "body_apply_force_to_center", force, Vec2{}, false, wake_body);
-}
-
-Status body_apply_torque(BodyId id, Q32 torque, bool wake_body) {
-  const char* fn = "body_apply_torque";
-  World* w = nullptr;
-  int32_t i = 0;
-  Status s = resolve_body(id, fn, true, WorldId{}, &w, &i);
-  if (!s.ok()) return s;
-  Body& body = body_at(w, i);
-  BodySim& sim = sim_at(w, i);
-  if (body.type != BodyType::dynamic_body || !body.enabled || (!body.awake && !wake_body)) return s;
-  const Q32 t = add_quiet(sim.torque, torque);
-  if (!check_closed(fn, describe(id) + " accumulated torque", t, -k_max_torque, k_max_torque, "N·m", &s)) return s;
-  const Q32 alpha = mul_quiet(sim.inv_inertia, t);
-  if (!check_closed(fn, describe(id) + " angular acceleration", alpha, -k_max_angular_acceleration,
-                    k_max_angular_acceleration, "rad/s²", &s)) {
-    return s;
-  }
-  sim.torque = t;
-  wake_body_island(w, i);
-  return s;
-}
-
-Status body_apply_linear_impulse(BodyId id, Vec2 impulse, Vec2 world_point, bool wake_body) {
-  return apply_impulse_impl(id, "body_apply_linear_impulse", impulse, Q32::zero(), world_point, true, wake_body);
-}
-
-Status body_apply_linear_impulse_to_center(BodyId id, Vec2 impulse, bool wake_body) {
-  return apply_impulse_impl(id, "body_apply_linear_impulse_to_center", impulse, Q32::zero(), Vec2{}, false,
-                            wake_body);
-}
-
-Status body_apply_angular_impulse(BodyId id, Q32 impulse, bool wake_body) {
-  return apply_impulse_impl(id, "body_apply_angular_impulse", Vec2{}, impulse, Vec2{}, false, wake_body);
 }
 
 // ---------------------------------------------------------------------------

@@ -51,7 +51,7 @@ bool check_angle(const char* function, const char* def_name, const char* field, 
 }
 
 Status resolve_joint(JointId id, const char* function, bool mutating, World** out_world, int32_t* out_index) {
-  return resolve_handle(function, "joint", describe(id), id.index1, id.generation, id.world, WorldId{}, mutating,
+  return resolve_handle(function, "joint", id.index1, id.generation, id.world, WorldId{}, mutating,
                         &World::joint_pool, out_world, out_index);
 }
 

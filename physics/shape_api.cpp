@@ -278,7 +278,7 @@ bool shape_geometry_within_reach(const ShapeGeometry& geometry) {
 
 Status resolve_shape(ShapeId id, const char* function, bool mutating, WorldId expected_world, World** out_world,
                      int32_t* out_index) {
-  return resolve_handle(function, "shape", describe(id), id.index1, id.generation, id.world, expected_world, mutating,
+  return resolve_handle(function, "shape", id.index1, id.generation, id.world, expected_world, mutating,
                         &World::shape_pool, out_world, out_index);
 }
 

@@ -195,37 +195,44 @@ World* find_world(WorldId id) {
   return w;
 }
 
-Status resolve_handle(const char* function, const char* kind, const std::string& what, uint32_t index1,
-                      uint32_t generation, WorldId world_id, WorldId expected_world, bool mutating,
-                      IdPool World::*pool, World** out_world, int32_t* out_index) {
-  const std::string prefix = std::string(function) + ": ";
-  if (index1 == 0) return make_status(StatusCode::null_handle, prefix + "the " + kind + " handle is null");
+Status resolve_handle(const char* function, const char* kind, uint32_t index1, uint32_t generation, WorldId world_id,
+                      WorldId expected_world, bool mutating, IdPool World::*pool, World** out_world,
+                      int32_t* out_index) {
+  // The message text is built only on a refusal: a handle that resolves
+  // allocates nothing (command application on the hot path).
+  const auto prefix = [&] { return std::string(function) + ": "; };
+  if (index1 == 0) return make_status(StatusCode::null_handle, prefix() + "the " + kind + " handle is null");
+  // The handle as describe() names it ("body {index 3, generation 1}").
+  const auto what = [&] {
+    return prefix() + kind + " {index " + std::to_string(index1 - 1) + ", generation " + std::to_string(generation) +
+           "}";
+  };
   if (!is_null(expected_world) && world_id != expected_world) {
     return make_status(StatusCode::foreign_handle,
-                       prefix + what + " belongs to " + describe(world_id) + ", not " + describe(expected_world));
+                       what() + " belongs to " + describe(world_id) + ", not " + describe(expected_world));
   }
   World* w = find_world(world_id);
   if (w == nullptr) {
     return make_status(StatusCode::invalid_handle,
-                       prefix + what + " belongs to " + describe(world_id) + ", which was destroyed or never existed");
+                       what() + " belongs to " + describe(world_id) + ", which was destroyed or never existed");
   }
   const IdPool& ids = w->*pool;
   if (index1 > static_cast<uint32_t>(id_pool_capacity(ids))) {
-    return make_status(StatusCode::invalid_handle, prefix + what + " was never created in " + describe(world_id));
+    return make_status(StatusCode::invalid_handle, what() + " was never created in " + describe(world_id));
   }
   const int32_t index = static_cast<int32_t>(index1 - 1);
   if (!id_pool_is_valid(ids, index, generation)) {
     const uint32_t now = id_pool_generation(ids, index);
     if (generation != 0 && generation < now) {
-      return make_status(StatusCode::invalid_handle, prefix + what + " was destroyed");
+      return make_status(StatusCode::invalid_handle, what() + " was destroyed");
     }
-    return make_status(StatusCode::invalid_handle, prefix + what + " does not name a live " + kind + " of " +
+    return make_status(StatusCode::invalid_handle, what() + " does not name a live " + kind + " of " +
                                                        describe(world_id) + " (the slot is at generation " +
                                                        std::to_string(now) + ")");
   }
   if (mutating && w->locked) {
     return make_status(StatusCode::world_locked,
-                       prefix + describe(world_id) + " is locked inside world_step(); change it between steps");
+                       prefix() + describe(world_id) + " is locked inside world_step(); change it between steps");
   }
   *out_world = w;
   *out_index = index;

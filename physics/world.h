@@ -136,11 +136,12 @@ Status resolve_world(WorldId id, const char* function, bool mutating, World** ou
 /// shared path of resolve_body / resolve_shape). Refuses, in this order: a
 /// null handle, a world other than expected_world (when not null), a world
 /// that is gone, an index never allocated, a destroyed or otherwise dead
-/// generation, and (when mutating) a locked world. `kind` ("body") and `what`
-/// (the described handle) make the message.
-Status resolve_handle(const char* function, const char* kind, const std::string& what, uint32_t index1,
-                      uint32_t generation, WorldId world_id, WorldId expected_world, bool mutating,
-                      IdPool World::*pool, World** out_world, int32_t* out_index);
+/// generation, and (when mutating) a locked world. `kind` ("body") names the
+/// handle in the message as describe() does ("body {index 3, generation 1}");
+/// the text is built only on a refusal (a resolved handle allocates nothing).
+Status resolve_handle(const char* function, const char* kind, uint32_t index1, uint32_t generation, WorldId world_id,
+                      WorldId expected_world, bool mutating, IdPool World::*pool, World** out_world,
+                      int32_t* out_index);
 
 /// The quiet version of resolve_handle for getters: true and the world and
 /// index when the handle names a live object.

@@ -26,6 +26,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "replay/rollback.h"
 #include "replay/state.h"
 
 namespace tandem {
@@ -147,6 +148,7 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
   last_heard_frame_.assign(endpoints, 0);
   gone_.assign(endpoints, 0);
   snap_world_.assign(c.history_ticks, {});
+  snap_keyframe_.assign(c.history_ticks, {});
   snap_game_.assign(c.history_ticks, {});
   snap_tick_.assign(c.history_ticks, UINT64_MAX);
   snap_commands_.assign(c.history_ticks, {});
@@ -165,8 +167,12 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
     for (uint64_t t = 1; t <= c.input_delay; ++t) store_input(p, t, zeros.data());
   }
   // Tick 0: the start state.
-  Status s = snapshot_into(world, &snap_world_[0]);
+  Status s = rollback_save(world, &snap_world_[0]);
   if (!s.ok()) return s;
+  if (c.record_replay) {
+    s = snapshot_into(world, &snap_keyframe_[0]);  // the replay's start state
+    if (!s.ok()) return s;
+  }
   if (callbacks_.save_game) callbacks_.save_game(&snap_game_[0]);
   snap_tick_[0] = 0;
   start_hash_ = world_state_hash(world);
@@ -187,7 +193,7 @@ Status Session::start(WorldId world, const SessionConfig& c, SessionCallbacks ca
       header.has_scene_hash = true;
       header.scene_hash = XXH3_64bits(c.replay_scene.data(), c.replay_scene.size());
     }
-    s = writer_.write_header(header, snap_world_[0], snap_game_[0]);
+    s = writer_.write_header(header, snap_keyframe_[0], snap_game_[0]);
     if (!s.ok()) return s;
   }
   stop_ = {};
@@ -251,7 +257,10 @@ bool Session::simulate(uint64_t tick) {
   }
   if (callbacks_.after_step) callbacks_.after_step(tick, world_);
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
-  s = snapshot_into(world_, &snap_world_[h]);
+  s = rollback_save(world_, &snap_world_[h]);
+  if (s.ok() && recording_ && config_.keyframe_interval != 0 && tick % config_.keyframe_interval == 0) {
+    s = snapshot_into(world_, &snap_keyframe_[h]);  // a replay keyframe: the portable image, taken after the step
+  }
   if (!s.ok()) {
     stop(SessionState::error, "tick " + std::to_string(tick) + ": snapshot failed: " + s.message);
     return false;
@@ -282,7 +291,7 @@ void Session::rollback() {
     stop(SessionState::error, "rollback to tick " + std::to_string(base) + ": snapshot no longer kept");
     return;
   }
-  const Status s = world_restore(world_, snap_world_[h].data(), snap_world_[h].size());
+  const Status s = rollback_restore(world_, snap_world_[h]);
   if (!s.ok()) {
     stop(SessionState::error, "rollback to tick " + std::to_string(base) + ": restore failed: " + s.message);
     return;
@@ -321,7 +330,7 @@ void Session::confirm() {
       }
       Status s = writer_.append_tick(std::move(rec));
       if (s.ok() && config_.keyframe_interval != 0 && t % config_.keyframe_interval == 0) {
-        s = writer_.append_keyframe(t, snap_world_[h], snap_game_[h]);
+        s = writer_.append_keyframe(t, snap_keyframe_[h], snap_game_[h]);
       }
       if (!s.ok()) {
         stop(SessionState::error, "recording tick " + std::to_string(t) + ": " + s.message);
@@ -695,7 +704,7 @@ void Session::desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint
   send_packets();
 }
 
-Status Session::state_image(uint64_t tick, std::vector<uint8_t>* out) const {
+Status Session::ring_slot(uint64_t tick, size_t* slot) const {
   if (snap_tick_.empty()) return bad("session not started");
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
   if (tick > current_ || snap_tick_[h] != tick) {
@@ -703,8 +712,24 @@ Status Session::state_image(uint64_t tick, std::vector<uint8_t>* out) const {
                std::to_string(current_ >= config_.history_ticks ? current_ - config_.history_ticks + 1 : 0) + "…" +
                std::to_string(current_) + ")");
   }
-  *out = snap_world_[h];
+  *slot = h;
   return {};
+}
+
+Status Session::state_image(uint64_t tick, std::vector<uint8_t>* out) const {
+  size_t h = 0;
+  const Status kept = ring_slot(tick, &h);
+  if (!kept.ok()) return kept;
+  // The compact image restored into a scratch world, then encoded portably.
+  // Contacts between simulated bodies carry no manifold geometry in the
+  // compact image (the next step recomputes it), so those fields read as zero
+  // here on every peer alike; bodies, joints and impulses are exact.
+  Result<WorldId> w = create_world(default_world_def());
+  if (!w.ok()) return w.status;
+  Status s = rollback_restore(w.value, snap_world_[h]);
+  if (s.ok()) s = snapshot_into(w.value, out);
+  (void)destroy_world(w.value);
+  return s;
 }
 
 std::vector<uint8_t> Session::replay_bytes() {
@@ -744,12 +769,13 @@ void Session::peer_disconnected(uint32_t endpoint) {
 // --- per-body hashes ----------------------------------------------------------------
 
 Status Session::local_body_hashes(uint64_t tick, std::vector<uint64_t>* out) const {
-  std::vector<uint8_t> image;
-  Status s = state_image(tick, &image);
-  if (!s.ok()) return s;
-  Result<WorldId> w = create_world_from_snapshot(image.data(), image.size());
+  size_t h = 0;
+  const Status kept = ring_slot(tick, &h);
+  if (!kept.ok()) return kept;
+  Result<WorldId> w = create_world(default_world_def());
   if (!w.ok()) return w.status;
-  s = world_body_hashes(w.value, out);
+  Status s = rollback_restore(w.value, snap_world_[h]);
+  if (s.ok()) s = world_body_hashes(w.value, out);
   (void)destroy_world(w.value);
   return s;
 }

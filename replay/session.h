@@ -61,13 +61,13 @@
 // to the game's largest tick, the session's own code allocates nothing per
 // tick without recording (with recording, each confirmed tick is appended to
 // the in-memory replay). Measured with a counting operator new (2 peers,
-// arena, 300 frames): the allocations that remain come from applying the
-// engine commands, in proportion to the ticks simulated, re-simulated ones
-// included. apply_command itself checks the handle without building text
-// (2026-11-25); what remains is inside physics/: body_apply_force builds its
-// handle description and one message per limit check even on success (13
-// allocations per call measured with a counting operator new;
-// apply_linear_impulse 7, set_linear_velocity 4).
+// arena, 300 frames): applying the engine commands allocated in proportion to
+// the ticks simulated, because the body functions built their error text even
+// on success; since 2026-11-25 they build it only on a refusal, and
+// apply_command of apply_force, apply_linear_impulse and set_linear_velocity
+// on a live body allocates nothing (tests/replay/test_command_allocations.cpp).
+// Per-tick snapshots are compact rollback images (replay/rollback.h): a
+// save into a slot that held the same scene does not allocate either.
 //
 // ORDER. Everything the simulation sees is ordered by data: inputs by
 // (tick, player), commands in the order the callback produced them. Packet
@@ -83,6 +83,7 @@
 #include "physics/tandem.h"
 #include "replay/commands.h"
 #include "replay/replay_file.h"
+#include "replay/rollback.h"
 #include "replay/session_packet.h"
 
 namespace tandem {
@@ -252,7 +253,13 @@ class Session {
   /// without record_replay.
   std::vector<uint8_t> replay_bytes();
   /// The state image (replay/state.h) of a tick still in the snapshot ring
-  /// (within history_ticks of current_tick(), ≤ current_tick()).
+  /// (within history_ticks of current_tick(), ≤ current_tick()). Made by
+  /// restoring the ring's compact image (replay/rollback.h) into a scratch
+  /// world: bodies, joints, contact impulses and feature ids are exact; the
+  /// manifold geometry of contacts between simulated bodies reads as zero
+  /// (the compact image omits it), alike on every peer, so `tandem diff` of
+  /// two peers' images names the first state that really differs. Its
+  /// world_state_hash is therefore not the tick's exchanged hash.
   Status state_image(uint64_t tick, std::vector<uint8_t>* out) const;
   /// Writes `prefix`.replay (when recording) and `prefix`.state: the image
   /// of the desync tick when desynced, else of the confirmed tick.
@@ -282,6 +289,7 @@ class Session {
   bool input_known(uint32_t player, uint64_t tick) const;
   void store_input(uint32_t player, uint64_t tick, const uint8_t* bytes);
   uint64_t all_known_through() const;
+  Status ring_slot(uint64_t tick, size_t* slot) const;  // the snapshot slot holding `tick`, or why none does
   bool simulate(uint64_t tick);
   void rollback();
   void confirm();
@@ -336,8 +344,11 @@ class Session {
   std::vector<uint64_t> last_heard_frame_;
   std::vector<uint8_t> gone_;
 
-  // Snapshot ring (history_ticks slots, tick % history_ticks).
-  std::vector<std::vector<uint8_t>> snap_world_;
+  // Snapshot ring (history_ticks slots, tick % history_ticks): compact
+  // rollback images (replay/rollback.h); the portable image of a slot only
+  // for keyframe ticks while recording (the replay's keyframes).
+  std::vector<RollbackBuffer> snap_world_;
+  std::vector<std::vector<uint8_t>> snap_keyframe_;
   std::vector<std::vector<uint8_t>> snap_game_;
   std::vector<uint64_t> snap_tick_;
   std::vector<std::vector<Command>> snap_commands_;  // recording only

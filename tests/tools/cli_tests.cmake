@@ -26,6 +26,11 @@ tandem_cli_test(fixed-bad-function 2 "fixed|cube|2" ERR "unknown function 'cube'
 foreach(command run render demo)
   tandem_cli_test(${command}-help 0 "${command}|--help" OUT "Examples:\n  tandem ${command}")
 endforeach()
+# `tandem peer` is an alias of `tandem session`: same help, same argument checks.
+tandem_cli_test(peer-help 0 "peer|--help" OUT "Play one peer of a networked arena game over UDP.*tandem peer. is the same command"
+  SAME "session|--help")
+tandem_cli_test(peer-missing-endpoint 2 "peer|--peers|127.0.0.1:7000,127.0.0.1:7001" ERR "--endpoint is required")
+tandem_cli_test(peer-in-command-list 0 "--help" OUT "session, peer")
 
 # --- run ----------------------------------------------------------------------------
 tandem_cli_test(run-pyramid 0 "run|scenes/pyramid.json|--ticks|90|--hash-every|30"

@@ -396,12 +396,14 @@ int run_session_bench(const BenchArgs& a, const GlobalOptions& g) {
 
 void register_session_commands(CLI::App& app, const GlobalOptions& options, std::vector<Command>* commands) {
   auto* session = app.add_subcommand("session", "Play one peer of a networked arena game over UDP (one process per player)");
+  session->alias("peer");  // `tandem peer`: the same command under the name the netplay docs use
   auto sa = std::make_shared<PlayArgs>();
   session->add_option("--endpoint", sa->endpoint, "this peer's index in --peers (0…)")->required();
   session->add_option("--peers", sa->peers, "every peer's HOST:PORT, in endpoint order (2…8)")->required()->delimiter(',');
   add_common(session, sa.get());
   session->footer(
       "Every peer gets the same --peers list and options; endpoint i binds the i-th address.\n"
+      "`tandem peer` is the same command.\n"
       "Example (two terminals):\n"
       "  tandem session --endpoint 0 --peers 127.0.0.1:7000,127.0.0.1:7001 --latency 40 --jitter 10\n"
       "  tandem session --endpoint 1 --peers 127.0.0.1:7000,127.0.0.1:7001 --latency 40 --jitter 10");

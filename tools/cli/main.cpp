@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
 
   if (argc > 1 && argv[1][0] != '-') {  // CLI11 alone would only say "A subcommand is required"
     const std::string name = argv[1];
-    const auto known = app.get_subcommands([&](CLI::App* sub) { return sub->get_name() == name; });
+    const auto known = app.get_subcommands([&](CLI::App* sub) { return sub->check_name(name); });  // names and aliases
     if (known.empty()) {
       std::fprintf(stderr, "tandem: unknown command '%s'; run tandem --help for the list\n", name.c_str());
       return 2;

@@ -1,0 +1,126 @@
+// Command application allocates nothing when it succeeds: apply_command of
+// apply_force, apply_linear_impulse and set_linear_velocity on a live body
+// builds no message text (the handle check and the limit checks build it
+// only on a refusal), so a rollback session re-simulating many ticks per
+// frame does not touch the heap for its commands.
+//
+// This file replaces the global operator new/delete of the replay test
+// binary with malloc-based versions that count calls while a flag is set;
+// the flag is set only around the apply_command calls under test.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <string>
+
+#include "physics/tandem.h"
+#include "replay/commands.h"
+
+using namespace tandem;
+
+namespace {
+std::atomic<bool> g_count_allocations{false};
+std::atomic<int64_t> g_allocation_count{0};
+
+void* counted_malloc(std::size_t size) {
+  if (g_count_allocations.load(std::memory_order_relaxed)) g_allocation_count.fetch_add(1);
+  return std::malloc(size == 0 ? 1 : size);
+}
+
+void* counted_aligned(std::size_t size, std::align_val_t alignment) {
+  if (g_count_allocations.load(std::memory_order_relaxed)) g_allocation_count.fetch_add(1);
+  const std::size_t a = static_cast<std::size_t>(alignment);
+  const std::size_t n = size == 0 ? a : (size + a - 1) / a * a;
+  return std::aligned_alloc(a, n);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  void* p = counted_malloc(size);
+  if (p == nullptr) throw std::bad_alloc();
+  return p;
+}
+void* operator new[](std::size_t size) {
+  void* p = counted_malloc(size);
+  if (p == nullptr) throw std::bad_alloc();
+  return p;
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  void* p = counted_aligned(size, alignment);
+  if (p == nullptr) throw std::bad_alloc();
+  return p;
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) {
+  void* p = counted_aligned(size, alignment);
+  if (p == nullptr) throw std::bad_alloc();
+  return p;
+}
+void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return counted_aligned(size, alignment);
+}
+void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return counted_aligned(size, alignment);
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+
+namespace {
+
+/// Allocations made by apply_command(world, command); the status is checked.
+int64_t allocations_of(WorldId world, const Command& command, bool expect_ok) {
+  g_allocation_count = 0;
+  g_count_allocations = true;
+  const Status s = apply_command(world, command);
+  g_count_allocations = false;
+  CHECK(s.ok() == expect_ok);
+  return g_allocation_count.load();
+}
+
+}  // namespace
+
+TEST_CASE("apply_command of force, impulse and velocity on a live body allocates nothing", "[replay][commands]") {
+  UniqueWorld world = make_unique_world(default_world_def()).value;
+  BodyDef def = default_body_def();
+  def.type = BodyType::dynamic_body;
+  const BodyId body = create_body(world.id, def).value;
+  REQUIRE(create_circle_shape(body, default_shape_def(), Circle{vec2(0, 0), Q32::from_int(1)}).ok());
+  const BodyRef ref = body_ref(body);
+
+  const Command force = make_apply_force(ref, vec2(3, -2), vec2(1, 0));
+  const Command force_center = make_apply_force_to_center(ref, vec2(-1, 4));
+  const Command impulse = make_apply_linear_impulse(ref, vec2(1, 1), vec2(0, 1));
+  const Command impulse_center = make_apply_linear_impulse_to_center(ref, vec2(0, -1));
+  const Command velocity = make_set_linear_velocity(ref, vec2(2, 5));
+
+  // The counter sees allocations made inside apply_command: a refused
+  // command (a stale handle) builds its message.
+  const Command stale = make_set_linear_velocity(BodyRef{ref.index, ref.generation + 1}, vec2(1, 1));
+  CHECK(allocations_of(world.id, stale, false) > 0);
+
+  int64_t total = 0;
+  for (int k = 0; k < 10; ++k) {
+    total += allocations_of(world.id, force, true);
+    total += allocations_of(world.id, force_center, true);
+    total += allocations_of(world.id, impulse, true);
+    total += allocations_of(world.id, impulse_center, true);
+    total += allocations_of(world.id, velocity, true);
+    REQUIRE(world_step(world.id, Q32::from_ratio(1, 60)).ok());
+  }
+  CHECK(total == 0);
+  // The commands took effect (the last one set the velocity before the step).
+  CHECK(body_linear_velocity(body) != Vec2{});
+}
