@@ -180,6 +180,16 @@ int32_t kind_rank(const std::string& kind) {
   }
   return 11;
 }
+/// Marks `d` as differing at record `r` (its generation read on side a) whose
+/// slot generation on side b is `generation_b`.
+void mark_record(StateDifference* d, const DecodedRecord& r, uint32_t generation_b) {
+  d->differs = true;
+  d->kind = r.kind;
+  d->index = r.index;
+  d->index2 = r.index2;
+  d->generation = r.generation;
+  d->generation_b = generation_b;
+}
 }  // namespace
 
 StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) {
@@ -189,7 +199,6 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
     const DecodedRecord& ra = a.records[i];
     const DecodedRecord& rb = b.records[i];
     if (ra.kind != rb.kind || ra.index != rb.index || ra.index2 != rb.index2) {
-      d.differs = true;
       // The record that sorts first in canonical order is the one the other
       // side lacks; kinds differ only at a section boundary, where the
       // shorter section is missing a record.
@@ -198,11 +207,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       const bool a_first = rank_a != rank_b ? rank_a < rank_b
                                             : (ra.index < rb.index || (ra.index == rb.index && ra.index2 < rb.index2));
       const DecodedRecord& r = a_first ? ra : rb;
-      d.kind = r.kind;
-      d.index = r.index;
-      d.index2 = r.index2;
-      d.generation = r.generation;
-      d.generation_b = r.generation;
+      mark_record(&d, r, r.generation);
       d.missing_in_b = a_first;
       d.missing_in_a = !a_first;
       return d;
@@ -212,12 +217,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       const DecodedField& fa = ra.fields[f];
       const DecodedField& fb = rb.fields[f];
       if (fa.name != fb.name || fa.value != fb.value) {
-        d.differs = true;
-        d.kind = ra.kind;
-        d.index = ra.index;
-        d.index2 = ra.index2;
-        d.generation = ra.generation;
-        d.generation_b = rb.generation;
+        mark_record(&d, ra, rb.generation);
         d.field = fa.name == fb.name ? fa.name : fa.name + " / " + fb.name;
         d.value_a = fa.value;
         d.value_b = fb.value;
@@ -226,12 +226,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       }
     }
     if (ra.fields.size() != rb.fields.size()) {
-      d.differs = true;
-      d.kind = ra.kind;
-      d.index = ra.index;
-      d.index2 = ra.index2;
-      d.generation = ra.generation;
-      d.generation_b = rb.generation;
+      mark_record(&d, ra, rb.generation);
       const bool a_longer = ra.fields.size() > rb.fields.size();
       d.field = (a_longer ? ra.fields[fields] : rb.fields[fields]).name + " (present on one side only)";
       d.value_a = static_cast<int64_t>(ra.fields.size());
@@ -239,12 +234,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
       return d;
     }
     if (ra.generation != rb.generation) {
-      d.differs = true;
-      d.kind = ra.kind;
-      d.index = ra.index;
-      d.index2 = ra.index2;
-      d.generation = ra.generation;
-      d.generation_b = rb.generation;
+      mark_record(&d, ra, rb.generation);
       d.field = "generation";
       d.value_a = ra.generation;
       d.value_b = rb.generation;
@@ -254,12 +244,7 @@ StateDifference diff_world_states(const DecodedState& a, const DecodedState& b) 
   if (a.records.size() != b.records.size()) {
     const bool a_longer = a.records.size() > b.records.size();
     const DecodedRecord& r = a_longer ? a.records[n] : b.records[n];
-    d.differs = true;
-    d.kind = r.kind;
-    d.index = r.index;
-    d.index2 = r.index2;
-    d.generation = r.generation;
-    d.generation_b = r.generation;
+    mark_record(&d, r, r.generation);
     d.missing_in_b = a_longer;
     d.missing_in_a = !a_longer;
   }
