@@ -4,10 +4,11 @@
 // symplectic Euler formula and the analytic law), determinism (two worlds
 // side by side, id sequences), and zero heap allocations per warmed-up step.
 //
-// The allocation test replaces the global operator new/delete of this test
-// binary with malloc-based versions that count calls while a flag is set;
-// the flag is set only around world_step().
+// The allocation tests count operator new calls (tests/counting_allocator.h,
+// included here once for the physics test binary) only around world_step().
 #include <catch2/catch.hpp>
+
+#include "../counting_allocator.h"  // this binary's counting operator new/delete
 
 #include <atomic>
 #include <cmath>
@@ -25,67 +26,6 @@
 using namespace tandem;
 using namespace tandem::test_support;
 
-// ---------------------------------------------------------------------------
-// Counting allocator (whole binary; counts only while g_count_allocations)
-// ---------------------------------------------------------------------------
-
-namespace {
-std::atomic<bool> g_count_allocations{false};
-std::atomic<int64_t> g_allocation_count{0};
-
-void* counted_malloc(std::size_t size) {
-  if (g_count_allocations.load(std::memory_order_relaxed)) g_allocation_count.fetch_add(1);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* counted_aligned(std::size_t size, std::align_val_t alignment) {
-  if (g_count_allocations.load(std::memory_order_relaxed)) g_allocation_count.fetch_add(1);
-  const std::size_t a = static_cast<std::size_t>(alignment);
-  const std::size_t n = size == 0 ? a : (size + a - 1) / a * a;
-  return std::aligned_alloc(a, n);
-}
-}  // namespace
-
-void* operator new(std::size_t size) {
-  void* p = counted_malloc(size);
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-void* operator new[](std::size_t size) {
-  void* p = counted_malloc(size);
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  void* p = counted_aligned(size, alignment);
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) {
-  void* p = counted_aligned(size, alignment);
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return counted_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return counted_aligned(size, alignment);
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace {
 
