@@ -432,5 +432,11 @@ Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b,
 /// the same way.
 Manifold collide_persistent(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b,
                             const Manifold& previous);
+/// The same, written to *out (which must not alias `previous`): the normal,
+/// the point count and the points in use; points past the count keep what
+/// *out held (update_contacts passes a zeroed slot, so the bits equal the
+/// by-value form's).
+void collide_persistent(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b,
+                        const Manifold& previous, Manifold* out);
 
 }  // namespace tandem

@@ -68,7 +68,7 @@ void update_manifold(const World& world, Contact* c, const Contact* old) {
   const Transform xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
   const Transform xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
   if (old != nullptr && (old->flags & k_contact_touching) != 0) {
-    c->manifold = collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, old->manifold);
+    collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, old->manifold, &c->manifold);
   } else {
     c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
   }
@@ -123,16 +123,10 @@ void update_contacts(World* world) {
       if (candidate.generation_a == gen_a && candidate.generation_b == gen_b) old = &candidate;
       ++cursor;
     }
-    Contact c;
-    c.shape_a = pair.shape_a;
-    c.shape_b = pair.shape_b;
-    c.generation_a = gen_a;
-    c.generation_b = gen_b;
-    c.body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
-    c.body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
-    c.flags = old != nullptr ? old->flags : 0;
-    if (old != nullptr && !body_is_simulated(world->bodies[static_cast<size_t>(c.body_a)]) &&
-        !body_is_simulated(world->bodies[static_cast<size_t>(c.body_b)])) {
+    const int32_t body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
+    const int32_t body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
+    if (old != nullptr && !body_is_simulated(world->bodies[static_cast<size_t>(body_a)]) &&
+        !body_is_simulated(world->bodies[static_cast<size_t>(body_b)])) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
       old_of[next.size()] = k_carried_contact;
@@ -140,7 +134,14 @@ void update_contacts(World* world) {
       continue;
     }
     old_of[next.size()] = old != nullptr ? static_cast<int32_t>(old - old_list.data()) : k_no_old_contact;
-    next.push_back(c);
+    Contact& c = next.emplace_back();  // zeroed in place (no copy); the narrow phase fills the manifold
+    c.shape_a = pair.shape_a;
+    c.shape_b = pair.shape_b;
+    c.generation_a = gen_a;
+    c.generation_b = gen_b;
+    c.body_a = body_a;
+    c.body_b = body_b;
+    c.flags = old != nullptr ? old->flags : 0;
   }
   // The narrow phase, per contact (see the file comment).
   const World& w = *world;

@@ -146,18 +146,7 @@ namespace manifold_detail {
 Manifold to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b) {
   Manifold m;
   if (lm.count == 0) return m;
-  m.normal = fast::rotate(xf_a.q, lm.normal);
-  const Vec2 pab = fast::sub(xf_a.p, xf_b.p);
-  for (int32_t i = 0; i < lm.count; ++i) {
-    const LocalPoint& lp = lm.points[static_cast<size_t>(i)];
-    ManifoldPoint& mp = m.points[static_cast<size_t>(i)];
-    mp.anchor_a = fast::rotate(xf_a.q, lp.point);
-    mp.anchor_b = fast::add(mp.anchor_a, pab);
-    mp.point = fast::add(xf_a.p, mp.anchor_a);
-    mp.separation = lp.separation;
-    mp.id = lp.id;
-  }
-  m.point_count = lm.count;
+  to_world(lm, xf_a, xf_b, &m);
   return m;
 }
 
@@ -349,13 +338,20 @@ Manifold collide(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b,
   return {};
 }
 
+void collide_persistent(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b,
+                        const Manifold& previous, Manifold* out) {
+  if (a.type == ShapeType::polygon && b.type == ShapeType::polygon && previous.point_count == 2 &&
+      reclip_polygons(a.polygon, xf_a, b.polygon, xf_b, previous, out)) {
+    return;
+  }
+  *out = collide(a, xf_a, b, xf_b);
+}
+
 Manifold collide_persistent(const ShapeGeometry& a, Transform xf_a, const ShapeGeometry& b, Transform xf_b,
                             const Manifold& previous) {
-  if (a.type == ShapeType::polygon && b.type == ShapeType::polygon && previous.point_count == 2) {
-    Manifold m;
-    if (reclip_polygons(a.polygon, xf_a, b.polygon, xf_b, previous, &m)) return m;
-  }
-  return collide(a, xf_a, b, xf_b);
+  Manifold m;
+  collide_persistent(a, xf_a, b, xf_b, previous, &m);
+  return m;
 }
 
 }  // namespace tandem

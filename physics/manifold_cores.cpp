@@ -105,21 +105,23 @@ int32_t incident_edge_at_vertex(const Core& inc, int32_t vertex, Vec2 normal) {
 
 namespace {
 
-/// Tangent coordinates from r1 along the reference edge: the reference edge
-/// ends at upper1, the incident ends are at s1 (i1) and s2 (i2); the
-/// incident edge runs the other way (i1 upper, i2 lower) when the edges face
-/// each other.
+/// Coordinates of the incident ends from r1, along the reference edge's
+/// tangent t = left_perp(n) and its normal n: the reference edge ends at
+/// upper1, the incident ends are at s1 (i1) and s2 (i2) along t and at
+/// heights h1, h2 along n; the incident edge runs the other way (i1 upper,
+/// i2 lower) when the edges face each other.
 struct Projected {
-  Q32 upper1, s1, s2;
+  Q32 upper1, s1, s2, h1, h2;
 };
 
 Projected project(const ClipEdges& e) {
   const Vec2 t = left_perp(e.normal);
-  return {fast::dot(fast::sub(e.r2, e.r1), t), fast::dot(fast::sub(e.i1, e.r1), t),
-          fast::dot(fast::sub(e.i2, e.r1), t)};
+  const Vec2 d1 = fast::sub(e.i1, e.r1), d2 = fast::sub(e.i2, e.r1);
+  return {fast::dot(fast::sub(e.r2, e.r1), t), fast::dot(d1, t), fast::dot(d2, t), fast::dot(d1, e.normal),
+          fast::dot(d2, e.normal)};
 }
 
-void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outside outside, LocalManifold* m) {
+inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outside outside, LocalManifold* m) {
   const Vec2 n = e.normal;
   const Vec2 r1 = e.r1;
   const Vec2 i1 = e.i1;
@@ -127,8 +129,12 @@ void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outs
   const Q32 upper1 = pr.upper1, s1 = pr.s1, s2 = pr.s2;
   const Q32 span = fast::sub(s1, s2);
 
+  // Each point with its core separation along the reference normal: an
+  // unclipped end's is its height h (the same dot product as for a clipped
+  // point: (p − r1)·n).
   struct Clipped {
     Vec2 p;
+    Q32 s;
     int32_t ref_vertex;
     int32_t inc_vertex;
   };
@@ -136,20 +142,26 @@ void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outs
   int32_t count = 0;
   if (outside == Outside::nothing && (max(s1, s2) < Q32::zero() || min(s1, s2) > upper1)) return;
   if (span > k_clip_span_epsilon && s1 <= Q32::zero()) {
-    pts[0] = {i1, e.r, e.i};  // incident edge wholly before r1 (or ending on it): its nearest end
+    pts[0] = {i1, pr.h1, e.r, e.i};  // incident edge wholly before r1 (or ending on it): its nearest end
     count = 1;
   } else if (span > k_clip_span_epsilon && s2 >= upper1) {
-    pts[0] = {i2, e.r2i, e.i2i};  // wholly past r2
+    pts[0] = {i2, pr.h2, e.r2i, e.i2i};  // wholly past r2
     count = 1;
   } else {
-    Vec2 lower = i2;
-    Vec2 upper = i1;
+    Clipped lower{i2, pr.h2, e.r, e.i2i};
+    Clipped upper{i1, pr.h1, e.r2i, e.i};
     if (span > k_clip_span_epsilon) {
-      if (s2 < Q32::zero()) lower = fast::lerp(i2, i1, fast::div(fast::sub(Q32::zero(), s2), span));
-      if (s1 > upper1) upper = fast::lerp(i2, i1, fast::div(fast::sub(upper1, s2), span));
+      if (s2 < Q32::zero()) {
+        lower.p = fast::lerp(i2, i1, fast::div(fast::sub(Q32::zero(), s2), span));
+        lower.s = fast::dot(fast::sub(lower.p, r1), n);
+      }
+      if (s1 > upper1) {
+        upper.p = fast::lerp(i2, i1, fast::div(fast::sub(upper1, s2), span));
+        upper.s = fast::dot(fast::sub(upper.p, r1), n);
+      }
     }
-    pts[0] = {lower, e.r, e.i2i};
-    pts[1] = {upper, e.r2i, e.i};
+    pts[0] = lower;
+    pts[1] = upper;
     count = 2;
   }
 
@@ -157,7 +169,7 @@ void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outs
   m->normal = ref_is_b ? -n : n;
   for (int32_t k = 0; k < count; ++k) {
     const Clipped& c = pts[sz(k)];
-    const Q32 s = fast::dot(fast::sub(c.p, r1), n);  // core separation along the reference normal
+    const Q32 s = c.s;
     const Vec2 mid = fast::mul_add(c.p, fast::sub(fast::sub(e.ref_radius, e.inc_radius), s) / 2, n);
     const uint16_t id = ref_is_b ? make_feature_id(c.inc_vertex, c.ref_vertex) : make_feature_id(c.ref_vertex, c.inc_vertex);
     add_point(m, mid, fast::sub(s, radius), id);
@@ -382,8 +394,7 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
   const Projected pr = project(e);
   const Q32 span = fast::sub(pr.s1, pr.s2);
   if (span <= k_clip_span_epsilon) return false;
-  const Q32 h1 = fast::dot(fast::sub(e.i1, e.r1), e.normal);
-  const Q32 h2 = fast::dot(fast::sub(e.i2, e.r1), e.normal);
+  const Q32 h1 = pr.h1, h2 = pr.h2;
   if (abs(fast::sub(h1, h2)) > fast::mul(k_reclip_sin, span)) return false;
 
   // Still overlapping along the reference edge by a clear margin (not a
@@ -394,7 +405,7 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
   const Q32 overlap = fast::sub(min(pr.s1, pr.upper1), max(pr.s2, Q32::zero()));
   const Q32 deepest = min(min(h1, h2), Q32::zero());
   if (overlap <= fast::sub(k_reclip_min_overlap, deepest * 4)) return false;
-  *out = to_world(lm, xf_a, xf_b);
+  to_world(lm, xf_a, xf_b, out);
   return true;
 }
 

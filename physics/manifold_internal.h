@@ -76,6 +76,23 @@ inline bool unit_vector(Vec2 v, Vec2* out) {
 /// Local manifold → world manifold (manifold.cpp).
 Manifold to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b);
 
+/// The same into *out: the normal, the count and points [0, count) only
+/// (the caller's slot keeps its other bytes). Needs lm.count > 0.
+inline void to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b, Manifold* out) {
+  out->normal = fast::rotate(xf_a.q, lm.normal);
+  const Vec2 pab = fast::sub(xf_a.p, xf_b.p);
+  for (int32_t i = 0; i < lm.count; ++i) {
+    const LocalPoint& lp = lm.points[static_cast<size_t>(i)];
+    ManifoldPoint& mp = out->points[static_cast<size_t>(i)];
+    mp.anchor_a = fast::rotate(xf_a.q, lp.point);
+    mp.anchor_b = fast::add(mp.anchor_a, pab);
+    mp.point = fast::add(xf_a.p, mp.anchor_a);
+    mp.separation = lp.separation;
+    mp.id = lp.id;
+  }
+  out->point_count = lm.count;
+}
+
 /// Two rounded points (manifold.cpp).
 void collide_points(Vec2 pa, Q32 ra, Vec2 pb, Q32 rb, Vec2 fallback, LocalManifold* m);
 /// A rounded segment against a rounded point (manifold.cpp).
