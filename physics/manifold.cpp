@@ -115,17 +115,23 @@
 //   when the original does. Stacking quality is unchanged (pyramid-100 top
 //   sag 0.734 m after 500 steps, 0.735 m before; docs/benchmarks.md).
 //
-// * Arithmetic. Dot products, rotations and transforms go through
-//   fast_math.h: the checked operators' bits (one exact 128-bit sum, rounded
-//   once) without the saturation test, where manifold_internal.h's range
-//   argument shows nothing can saturate (every coordinate in A's frame is
-//   below 2^21 m, every direction unit). Squared distances stay exact
-//   128-bit squares. The error argument is unchanged because the bits are:
-//   each projection is one correctly rounded Q32.32 value (error ≤ ½ raw
-//   unit ≈ 1.2e-10 m); a clipped point carries one rounded quotient t (the
-//   span is ≥ k_clip_span_epsilon = 2^-20 m, so t's error moves the point by
-//   ≤ |edge|·2^-33) and one rounded product per component; the oracle tests
-//   (tests/physics/test_manifold.cpp) keep their tolerances and pass.
+// * Arithmetic. Dot products, rotations, transforms, sums and differences
+//   go through narrow_math.h: one exact 128-bit sum of products rounded once,
+//   half up, and plain 64-bit adds, with no saturation test, where
+//   manifold_internal.h's range argument shows nothing can overflow (every
+//   coordinate in A's frame is below 2^21 m, every direction unit); outside
+//   the limits they wrap identically in every build. Clipping fractions use
+//   one 128÷64 division (their quotient is in [0, 1]). Squared distances stay
+//   exact 128-bit squares. Error: each projection is one rounded Q32.32 value
+//   (error ≤ ½ raw unit ≈ 1.2e-10 m; only exact negative ties round
+//   differently from the checked operators, toward +∞); a clipped point
+//   carries one rounded quotient t (the span is ≥ k_clip_span_epsilon =
+//   2^-20 m, so t's error moves the point by ≤ |edge|·2^-33) and one rounded
+//   product per component; the oracle tests (tests/physics/test_manifold.cpp)
+//   keep their tolerances and pass. The change from fast_math.h (checked
+//   bits, saturation and ties-away rounding) to these operations halved the
+//   re-clip's instruction count (docs/benchmarks.md) and changed results in
+//   the last bits (golden chains regenerated once).
 //
 // * Symmetry. collide() swaps and flips pairs stored the other way round, so
 //   collide(A, B) is bit-for-bit flip_manifold(collide(B, A)) for pairs of different
@@ -162,8 +168,8 @@ void collide_points(Vec2 pa, Q32 ra, Vec2 pb, Q32 rb, Vec2 fallback, LocalManifo
   if (separation >= k_margin) return;
   Vec2 n;
   if (!unit_vector(d, &n)) n = fallback;
-  const Vec2 ca = mul_add(pa, ra, n);
-  const Vec2 cb = mul_sub(pb, rb, n);
+  const Vec2 ca = nm::mul_add(pa, ra, n);
+  const Vec2 cb = nm::mul_sub(pb, rb, n);
   m->normal = n;
   add_point(m, midpoint(ca, cb), separation, 0);
 }
@@ -177,8 +183,8 @@ void collide_segment_point(Vec2 p1, Vec2 p2, Q32 ra, Vec2 c, Q32 rb, Vec2 fallba
     collide_points(p1, ra, c, rb, fallback, m);
     return;
   }
-  const Vec2 w = c - p1;
-  const Q32 s = dot(w, u);
+  const Vec2 w = nm::sub(c, p1);
+  const Q32 s = nm::dot(w, u);
   if (s <= Q32::zero()) {
     collide_points(p1, ra, c, rb, fallback, m);
     return;
@@ -187,13 +193,13 @@ void collide_segment_point(Vec2 p1, Vec2 p2, Q32 ra, Vec2 c, Q32 rb, Vec2 fallba
     collide_points(p2, ra, c, rb, fallback, m);
     return;
   }
-  const Q32 h = cross(u, w);  // > 0: c left of p1→p2
+  const Q32 h = nm::cross(u, w);  // > 0: c left of p1→p2
   const Vec2 n = h.raw > 0 ? left_perp(u) : (h.raw < 0 ? right_perp(u) : fallback);
   const Q32 separation = abs(h) - ra - rb;
   if (separation >= k_margin) return;
-  const Vec2 pa = mul_add(p1, s, u);
+  const Vec2 pa = nm::mul_add(p1, s, u);
   m->normal = n;
-  add_point(m, midpoint(mul_add(pa, ra, n), mul_sub(c, rb, n)), separation, 0);
+  add_point(m, midpoint(nm::mul_add(pa, ra, n), nm::mul_sub(c, rb, n)), separation, 0);
 }
 
 }  // namespace manifold_detail
@@ -217,14 +223,14 @@ Manifold flip_manifold(const Manifold& m) {
 // ---------------------------------------------------------------------------
 
 Manifold collide_circles(const Circle& a, Transform xf_a, const Circle& b, Transform xf_b) {
-  const Vec2 pb = fast::transform_point(fast::inv_mul_transforms(xf_a, xf_b), b.center);
+  const Vec2 pb = nm::transform_point(nm::inv_mul_transforms(xf_a, xf_b), b.center);
   LocalManifold lm;
   collide_points(a.center, a.radius, pb, b.radius, {Q32::zero(), Q32::one()}, &lm);
   return to_world(lm, xf_a, xf_b);
 }
 
 Manifold collide_capsule_and_circle(const Capsule& a, Transform xf_a, const Circle& b, Transform xf_b) {
-  const Vec2 pb = fast::transform_point(fast::inv_mul_transforms(xf_a, xf_b), b.center);
+  const Vec2 pb = nm::transform_point(nm::inv_mul_transforms(xf_a, xf_b), b.center);
   Vec2 u;
   if (!unit_vector(a.center2 - a.center1, &u)) u = {Q32::one(), Q32::zero()};
   LocalManifold lm;
@@ -237,7 +243,7 @@ Manifold collide_segment_and_circle(const Segment& a, Transform xf_a, const Circ
 }
 
 Manifold collide_polygon_and_circle(const Polygon& a, Transform xf_a, const Circle& b, Transform xf_b) {
-  const Vec2 c = fast::transform_point(fast::inv_mul_transforms(xf_a, xf_b), b.center);
+  const Vec2 c = nm::transform_point(nm::inv_mul_transforms(xf_a, xf_b), b.center);
   const int32_t count = std::clamp(a.count, int32_t{0}, int32_t{k_max_polygon_vertices});
   LocalManifold lm;
   if (count == 0) return {};
@@ -245,7 +251,7 @@ Manifold collide_polygon_and_circle(const Polygon& a, Transform xf_a, const Circ
   Q32 separation = Q32::min();
   int32_t edge = 0;
   for (int32_t i = 0; i < count; ++i) {
-    const Q32 s = fast::dot(a.normals[sz(i)], c - a.vertices[sz(i)]);
+    const Q32 s = nm::dot(a.normals[sz(i)], nm::sub(c, a.vertices[sz(i)]));
     if (s > separation) {
       separation = s;
       edge = i;
@@ -259,18 +265,18 @@ Manifold collide_polygon_and_circle(const Polygon& a, Transform xf_a, const Circ
   const Vec2 v2 = a.vertices[sz(next_index(edge, count))];
   if (separation > Q32::zero()) {
     // Outside the core: the reference edge or one of its vertices is closest.
-    if (dot(c - v1, v2 - v1) < Q32::zero()) {
+    if (nm::dot(nm::sub(c, v1), nm::sub(v2, v1)) < Q32::zero()) {
       collide_points(v1, a.radius, c, b.radius, n, &lm);
       return to_world(lm, xf_a, xf_b);
     }
-    if (dot(c - v2, v1 - v2) < Q32::zero()) {
+    if (nm::dot(nm::sub(c, v2), nm::sub(v1, v2)) < Q32::zero()) {
       collide_points(v2, a.radius, c, b.radius, n, &lm);
       return to_world(lm, xf_a, xf_b);
     }
   }
   // Over the face (or inside the core): the face normal.
-  const Vec2 ca = mul_add(c, a.radius - separation, n);
-  const Vec2 cb = mul_sub(c, b.radius, n);
+  const Vec2 ca = nm::mul_add(c, nm::sub(a.radius, separation), n);
+  const Vec2 cb = nm::mul_sub(c, b.radius, n);
   lm.normal = n;
   add_point(&lm, midpoint(ca, cb), separation - radius, 0);
   return to_world(lm, xf_a, xf_b);

@@ -52,7 +52,7 @@ ChainParams make_chain_params(const ChainSegment& s) {
 /// (skip: the neighbour segment owns it), or at a flat/concave end (snap to
 /// the segment normal).
 NormalType classify_normal(const ChainParams& c, Vec2 normal) {
-  if (fast::dot(normal, c.edge1) <= Q32::zero()) {
+  if (nm::dot(normal, c.edge1) <= Q32::zero()) {
     if (!c.convex1) return NormalType::snap;
     return cross(normal, c.normal0) > k_chain_sin_tolerance ? NormalType::skip : NormalType::admit;
   }
@@ -69,13 +69,13 @@ void chain_polygon_reference(const ChainParams& c, const Core& seg, const Core& 
   const Vec2 b1 = poly.vertices[sz(ref)];
   const Vec2 n0 = c.convex1 ? c.normal0 : c.normal1;
   const Vec2 n2 = c.convex2 ? c.normal2 : c.normal1;
-  const Q32 d1 = fast::dot(n, c.p1 - b1);
-  const Q32 d2 = fast::dot(n, c.p2 - b1);
-  const Q32 own = fast::dot(c.normal1, n);
+  const Q32 d1 = nm::dot(n, c.p1 - b1);
+  const Q32 d2 = nm::dot(n, c.p2 - b1);
+  const Q32 own = nm::dot(c.normal1, n);
   if (d1 < d2) {
-    if (fast::dot(n0, n) < own) return;
+    if (nm::dot(n0, n) < own) return;
   } else {
-    if (fast::dot(n2, n) < own) return;
+    if (nm::dot(n2, n) < own) return;
   }
   clip(poly, ref, seg, 0, true, Outside::nothing, m);
 }
@@ -86,12 +86,12 @@ void chain_polygon_reference(const ChainParams& c, const Core& seg, const Core& 
 /// where the two meet (ties: the front). False when no part of b lies over
 /// the segment.
 bool overlap_is_behind(const ChainParams& c, const Core& b) {
-  const Q32 length_along = fast::dot(c.edge1, c.p2 - c.p1);
+  const Q32 length_along = nm::dot(c.edge1, c.p2 - c.p1);
   Q32 t[k_max_polygon_vertices], d[k_max_polygon_vertices];
   for (int32_t j = 0; j < b.count; ++j) {
     const Vec2 r = b.vertices[sz(j)] - c.p1;
-    t[j] = fast::dot(c.edge1, r);
-    d[j] = fast::dot(c.normal1, r);
+    t[j] = nm::dot(c.edge1, r);
+    d[j] = nm::dot(c.normal1, r);
   }
   bool any = false;
   Q32 lo = Q32::max(), hi = Q32::min();
@@ -120,9 +120,9 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
 
   // One-sided: nothing when B's centroid is behind this segment and behind
   // the convex neighbours.
-  const bool behind1 = fast::dot(c.normal1, b.centroid - c.p1) < Q32::zero();
-  const bool behind0 = !c.convex1 || fast::dot(c.normal0, b.centroid - c.p1) < Q32::zero();
-  const bool behind2 = !c.convex2 || fast::dot(c.normal2, b.centroid - c.p2) < Q32::zero();
+  const bool behind1 = nm::dot(c.normal1, b.centroid - c.p1) < Q32::zero();
+  const bool behind0 = !c.convex1 || nm::dot(c.normal0, b.centroid - c.p1) < Q32::zero();
+  const bool behind2 = !c.convex2 || nm::dot(c.normal2, b.centroid - c.p2) < Q32::zero();
   if (behind1 && behind0 && behind2) return;
 
   const Q32 max_distance = b.radius + k_margin;
@@ -179,7 +179,7 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
       } else {
         // A polygon vertex over the segment: only from the front (a vertex
         // over the back is one of a large B whose centroid is in front).
-        if (fast::dot(c.normal1, b.vertices[sz(f.a_face_vertex)] - c.p1) < Q32::zero()) return;
+        if (nm::dot(c.normal1, b.vertices[sz(f.a_face_vertex)] - c.p1) < Q32::zero()) return;
         incident_vertex = f.a_face_vertex;
       }
     }
@@ -199,7 +199,7 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
     // Segment normal (and convex neighbours' normals) against polygon normals.
     Q32 edge_separation = Q32::max();
     for (int32_t j = 0; j < b.count; ++j) {
-      const Q32 s = fast::dot(c.normal1, b.vertices[sz(j)] - c.p1);
+      const Q32 s = nm::dot(c.normal1, b.vertices[sz(j)] - c.p1);
       if (s < edge_separation) {
         edge_separation = s;
         incident_vertex = j;
@@ -226,7 +226,7 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
       const Vec2 n = b.normals[sz(i)];
       if (classify_normal(c, -n) != NormalType::admit) continue;
       const Vec2 v = b.vertices[sz(i)];
-      const Q32 s = min(fast::dot(n, c.p1 - v), fast::dot(n, c.p2 - v));
+      const Q32 s = min(nm::dot(n, c.p1 - v), nm::dot(n, c.p2 - v));
       if (s > polygon_separation) {
         polygon_separation = s;
         reference = i;
@@ -245,7 +245,7 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
 }
 
 Manifold collide_chain_segment_and_core(const ChainSegment& a, Transform xf_a, const Core& b_local, Transform xf_b) {
-  const Core b = transform_core(b_local, fast::inv_mul_transforms(xf_a, xf_b));
+  const Core b = transform_core(b_local, nm::inv_mul_transforms(xf_a, xf_b));
   LocalManifold lm;
   collide_chain_core(a, b, &lm);
   return to_world(lm, xf_a, xf_b);
@@ -254,7 +254,7 @@ Manifold collide_chain_segment_and_core(const ChainSegment& a, Transform xf_a, c
 }  // namespace
 
 Manifold collide_chain_segment_and_circle(const ChainSegment& a, Transform xf_a, const Circle& b, Transform xf_b) {
-  const Vec2 c = fast::transform_point(fast::inv_mul_transforms(xf_a, xf_b), b.center);
+  const Vec2 c = nm::transform_point(nm::inv_mul_transforms(xf_a, xf_b), b.center);
   const Vec2 p1 = a.segment.point1;
   const Vec2 p2 = a.segment.point2;
   const Vec2 e = p2 - p1;

@@ -42,17 +42,17 @@ Core core_from_segment(Vec2 p1, Vec2 p2, Q32 radius) {
 Core transform_core(const Core& c, Transform xf) {
   Core t = c;
   for (int32_t i = 0; i < c.count; ++i) {
-    t.vertices[sz(i)] = fast::transform_point(xf, c.vertices[sz(i)]);
-    t.normals[sz(i)] = fast::rotate(xf.q, c.normals[sz(i)]);
+    t.vertices[sz(i)] = nm::transform_point(xf, c.vertices[sz(i)]);
+    t.normals[sz(i)] = nm::rotate(xf.q, c.normals[sz(i)]);
   }
-  t.centroid = fast::transform_point(xf, c.centroid);
+  t.centroid = nm::transform_point(xf, c.centroid);
   return t;
 }
 
 /// Smallest signed distance of `other`'s vertices along `axis` from `origin`.
 Q32 min_along(Vec2 axis, Vec2 origin, const Core& other) {
   Q32 s = Q32::max();
-  for (int32_t j = 0; j < other.count; ++j) s = min(s, fast::dot(axis, other.vertices[sz(j)] - origin));
+  for (int32_t j = 0; j < other.count; ++j) s = min(s, nm::dot(axis, other.vertices[sz(j)] - origin));
   return s;
 }
 
@@ -84,7 +84,7 @@ int32_t find_incident_edge(const Core& inc, Vec2 normal) {
   int32_t best = 0;
   Q32 best_dot = Q32::max();
   for (int32_t i = 0; i < inc.count; ++i) {
-    const Q32 d = fast::dot(normal, inc.normals[sz(i)]);
+    const Q32 d = nm::dot(normal, inc.normals[sz(i)]);
     if (d < best_dot) {
       best_dot = d;
       best = i;
@@ -99,7 +99,7 @@ int32_t find_incident_edge(const Core& inc, Vec2 normal) {
 /// to `normal` (the one starting at the vertex on ties).
 int32_t incident_edge_at_vertex(const Core& inc, int32_t vertex, Vec2 normal) {
   const int32_t prev = prev_index(vertex, inc.count);
-  return fast::dot(normal, inc.normals[sz(prev)]) < fast::dot(normal, inc.normals[sz(vertex)]) ? prev : vertex;
+  return nm::dot(normal, inc.normals[sz(prev)]) < nm::dot(normal, inc.normals[sz(vertex)]) ? prev : vertex;
 }
 
 
@@ -116,9 +116,9 @@ struct Projected {
 
 Projected project(const ClipEdges& e) {
   const Vec2 t = left_perp(e.normal);
-  const Vec2 d1 = fast::sub(e.i1, e.r1), d2 = fast::sub(e.i2, e.r1);
-  return {fast::dot(fast::sub(e.r2, e.r1), t), fast::dot(d1, t), fast::dot(d2, t), fast::dot(d1, e.normal),
-          fast::dot(d2, e.normal)};
+  const Vec2 d1 = nm::sub(e.i1, e.r1), d2 = nm::sub(e.i2, e.r1);
+  return {nm::dot(nm::sub(e.r2, e.r1), t), nm::dot(d1, t), nm::dot(d2, t), nm::dot(d1, e.normal),
+          nm::dot(d2, e.normal)};
 }
 
 inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_b, Outside outside, LocalManifold* m) {
@@ -127,7 +127,7 @@ inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_
   const Vec2 i1 = e.i1;
   const Vec2 i2 = e.i2;
   const Q32 upper1 = pr.upper1, s1 = pr.s1, s2 = pr.s2;
-  const Q32 span = fast::sub(s1, s2);
+  const Q32 span = nm::sub(s1, s2);
 
   // Each point with its core separation along the reference normal: an
   // unclipped end's is its height h (the same dot product as for a clipped
@@ -152,12 +152,12 @@ inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_
     Clipped upper{i1, pr.h1, e.r2i, e.i};
     if (span > k_clip_span_epsilon) {
       if (s2 < Q32::zero()) {
-        lower.p = fast::lerp(i2, i1, fast::div(fast::sub(Q32::zero(), s2), span));
-        lower.s = fast::dot(fast::sub(lower.p, r1), n);
+        lower.p = nm::lerp(i2, i1, nm::fraction(nm::sub(Q32::zero(), s2), span));
+        lower.s = nm::dot(nm::sub(lower.p, r1), n);
       }
       if (s1 > upper1) {
-        upper.p = fast::lerp(i2, i1, fast::div(fast::sub(upper1, s2), span));
-        upper.s = fast::dot(fast::sub(upper.p, r1), n);
+        upper.p = nm::lerp(i2, i1, nm::fraction(nm::sub(upper1, s2), span));
+        upper.s = nm::dot(nm::sub(upper.p, r1), n);
       }
     }
     pts[0] = lower;
@@ -165,14 +165,14 @@ inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_
     count = 2;
   }
 
-  const Q32 radius = fast::add(e.ref_radius, e.inc_radius);
+  const Q32 radius = nm::add(e.ref_radius, e.inc_radius);
   m->normal = ref_is_b ? -n : n;
   for (int32_t k = 0; k < count; ++k) {
     const Clipped& c = pts[sz(k)];
     const Q32 s = c.s;
-    const Vec2 mid = fast::mul_add(c.p, fast::sub(fast::sub(e.ref_radius, e.inc_radius), s) / 2, n);
+    const Vec2 mid = nm::mul_add(c.p, nm::sub(nm::sub(e.ref_radius, e.inc_radius), s) / 2, n);
     const uint16_t id = ref_is_b ? make_feature_id(c.inc_vertex, c.ref_vertex) : make_feature_id(c.ref_vertex, c.inc_vertex);
-    add_point(m, mid, fast::sub(s, radius), id);
+    add_point(m, mid, nm::sub(s, radius), id);
   }
 }
 
@@ -217,12 +217,12 @@ void find_face_pair(const Core& edges, const Core& pts, bool* out_has, Q32* out_
     const Vec2 n = edges.normals[sz(e)];
     const Vec2 dir = left_perp(n);
     const Vec2 v1 = edges.vertices[sz(e)];
-    const Q32 len = fast::dot(edges.vertices[sz(next_index(e, edges.count))] - v1, dir);
+    const Q32 len = nm::dot(edges.vertices[sz(next_index(e, edges.count))] - v1, dir);
     for (int32_t j = 0; j < pts.count; ++j) {
       const Vec2 w = pts.vertices[sz(j)] - v1;
-      const Q32 s = fast::dot(w, dir);
+      const Q32 s = nm::dot(w, dir);
       if (s <= Q32::zero() || s >= len) continue;
-      const Q32 h = fast::dot(w, n);
+      const Q32 h = nm::dot(w, n);
       if (h <= Q32::zero()) continue;
       if (!*out_has || h < *out_distance) {
         *out_has = true;
@@ -289,7 +289,7 @@ void collide_cores(const Core& a, const Core& b, LocalManifold* m) {
       if (distance >= max_distance) return;
       if (distance > k_vertex_pair_epsilon) {
         m->normal = n;
-        add_point(m, midpoint(fast::mul_add(va, a.radius, n), mul_sub(vb, b.radius, n)), distance - radius,
+        add_point(m, midpoint(nm::mul_add(va, a.radius, n), mul_sub(vb, b.radius, n)), distance - radius,
                   make_feature_id(f.vv_a, f.vv_b));
         return;
       }
@@ -325,7 +325,7 @@ using namespace manifold_detail;
 namespace {
 
 Manifold collide_core_pair(const Core& a, Transform xf_a, const Core& b_local, Transform xf_b) {
-  const Core b = transform_core(b_local, fast::inv_mul_transforms(xf_a, xf_b));
+  const Core b = transform_core(b_local, nm::inv_mul_transforms(xf_a, xf_b));
   LocalManifold lm;
   collide_cores(a, b, &lm);
   return to_world(lm, xf_a, xf_b);
@@ -360,7 +360,7 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
     return false;
   }
 
-  const Transform rel = fast::inv_mul_transforms(xf_a, xf_b);  // B's frame → A's frame
+  const Transform rel = nm::inv_mul_transforms(xf_a, xf_b);  // B's frame → A's frame
   ClipEdges e;
   if (!ref_is_b) {
     e.r = a0;
@@ -370,8 +370,8 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
     e.normal = a.normals[sz(e.r)];
     e.r1 = a.vertices[sz(e.r)];
     e.r2 = a.vertices[sz(e.r2i)];
-    e.i1 = fast::transform_point(rel, b.vertices[sz(e.i)]);
-    e.i2 = fast::transform_point(rel, b.vertices[sz(e.i2i)]);
+    e.i1 = nm::transform_point(rel, b.vertices[sz(e.i)]);
+    e.i2 = nm::transform_point(rel, b.vertices[sz(e.i2i)]);
     e.ref_radius = a.radius;
     e.inc_radius = b.radius;
   } else {
@@ -379,9 +379,9 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
     e.r2i = b1;
     e.i = a1;
     e.i2i = a0;
-    e.normal = fast::rotate(rel.q, b.normals[sz(e.r)]);
-    e.r1 = fast::transform_point(rel, b.vertices[sz(e.r)]);
-    e.r2 = fast::transform_point(rel, b.vertices[sz(e.r2i)]);
+    e.normal = nm::rotate(rel.q, b.normals[sz(e.r)]);
+    e.r1 = nm::transform_point(rel, b.vertices[sz(e.r)]);
+    e.r2 = nm::transform_point(rel, b.vertices[sz(e.r2i)]);
     e.i1 = a.vertices[sz(e.i)];
     e.i2 = a.vertices[sz(e.i2i)];
     e.ref_radius = b.radius;
@@ -392,19 +392,19 @@ bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transfo
   // edge (span > 0) and turns from it by at most atan(k_reclip_sin):
   // |h1 − h2| ≤ k_reclip_sin · span, h the heights over the reference line.
   const Projected pr = project(e);
-  const Q32 span = fast::sub(pr.s1, pr.s2);
+  const Q32 span = nm::sub(pr.s1, pr.s2);
   if (span <= k_clip_span_epsilon) return false;
   const Q32 h1 = pr.h1, h2 = pr.h2;
-  if (abs(fast::sub(h1, h2)) > fast::mul(k_reclip_sin, span)) return false;
+  if (abs(nm::sub(h1, h2)) > nm::mul(k_reclip_sin, span)) return false;
 
   // Still overlapping along the reference edge by a clear margin (not a
   // corner contact), and both clipped points inside the margin.
   LocalManifold lm;
   clip_projected(e, pr, ref_is_b, Outside::nearest_end, &lm);
   if (lm.count != 2) return false;
-  const Q32 overlap = fast::sub(min(pr.s1, pr.upper1), max(pr.s2, Q32::zero()));
+  const Q32 overlap = nm::sub(min(pr.s1, pr.upper1), max(pr.s2, Q32::zero()));
   const Q32 deepest = min(min(h1, h2), Q32::zero());
-  if (overlap <= fast::sub(k_reclip_min_overlap, deepest * 4)) return false;
+  if (overlap <= nm::sub(k_reclip_min_overlap, deepest * 4)) return false;
   to_world(lm, xf_a, xf_b, out);
   return true;
 }

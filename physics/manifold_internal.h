@@ -9,18 +9,22 @@
 //                       capsule pairs, and the re-clip of a persistent contact
 //   manifold_chain.cpp  chain segments (one-sided, smooth collision)
 //
-// Range (why fast_math.h's unchecked operations are exact here). Every
-// body-local coordinate of a shape, radius included, lies within
-// ±k_max_shape_size = 1e4 m (hull.cpp checks it), and body positions within
-// ±k_max_world_coordinate = 1e6 m. In A's frame every point of either shape
-// is therefore within 2·1e6 + 2·1e4 < 2^21 m of the origin: raw values below
-// 2^53. Every product formed here is a coordinate (< 2^53 raw) times a unit
-// or near-unit direction or rotation component (< 2^33 raw), or two unit
-// components: below 2^86, so the 128-bit sum of two never wraps, and every
-// rounded result is a coordinate or a projection on a unit axis, below
-// 2^21·√2 m — inside Q32.32's ±2^31. Nothing saturates, so the unchecked
-// operations give the checked ones' bits. (Squared distances are the one
-// exception: they use wide.h's exact 128-bit squares, as before.)
+// Range (why narrow_math.h's wrapping, unsaturated operations are exact
+// here). Every body-local coordinate of a shape, radius included, lies
+// within ±k_max_shape_size = 1e4 m (hull.cpp checks it), and body positions
+// within ±k_max_world_coordinate = 1e6 m. In A's frame every point of either
+// shape is therefore within 2·1e6 + 2·1e4 < 2^21 m of the origin: raw values
+// below 2^53. Every product formed here is a coordinate (< 2^53 raw) times a
+// unit or near-unit direction or rotation component (< 2^33 raw), or two
+// unit components: below 2^86, so the 128-bit sum of two never wraps, and
+// every rounded result is a coordinate or a projection on a unit axis, below
+// 2^21·√2 m — inside Q32.32's ±2^31; a sum or difference of two coordinates
+// is below 2^22 m. Nothing overflows, so the 64-bit adds need no saturation
+// test and the products no range test (outside the limits they wrap, the same
+// way in every build: narrow_math.h). Clipping fractions n/d have 0 ≤ n ≤ d,
+// so their quotient fits 33 bits and one 128÷64 division does it
+// (narrow_math::fraction). Squared distances are the one exception: they use
+// wide.h's exact 128-bit squares, as before.
 #pragma once
 
 #include <array>
@@ -29,9 +33,11 @@
 #include "fixed/vec2.h"
 #include "fixed/wide.h"
 #include "physics/collision.h"
-#include "physics/fast_math.h"
+#include "physics/narrow_math.h"
 
 namespace tandem::manifold_detail {
+
+namespace nm = narrow_math;
 
 /// Points are reported while separation < this (m).
 inline constexpr Q32 k_margin = k_speculative_distance;
@@ -79,14 +85,14 @@ Manifold to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b);
 /// The same into *out: the normal, the count and points [0, count) only
 /// (the caller's slot keeps its other bytes). Needs lm.count > 0.
 inline void to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b, Manifold* out) {
-  out->normal = fast::rotate(xf_a.q, lm.normal);
-  const Vec2 pab = fast::sub(xf_a.p, xf_b.p);
+  out->normal = nm::rotate(xf_a.q, lm.normal);
+  const Vec2 pab = nm::sub(xf_a.p, xf_b.p);
   for (int32_t i = 0; i < lm.count; ++i) {
     const LocalPoint& lp = lm.points[static_cast<size_t>(i)];
     ManifoldPoint& mp = out->points[static_cast<size_t>(i)];
-    mp.anchor_a = fast::rotate(xf_a.q, lp.point);
-    mp.anchor_b = fast::add(mp.anchor_a, pab);
-    mp.point = fast::add(xf_a.p, mp.anchor_a);
+    mp.anchor_a = nm::rotate(xf_a.q, lp.point);
+    mp.anchor_b = nm::add(mp.anchor_a, pab);
+    mp.point = nm::add(xf_a.p, mp.anchor_a);
     mp.separation = lp.separation;
     mp.id = lp.id;
   }

@@ -17,6 +17,7 @@
 
 #include "fixed/vec2.h"
 #include "physics/collision.h"
+#include "physics/narrow_math.h"
 
 using namespace tandem;
 
@@ -1160,4 +1161,45 @@ TEST_CASE("flip_manifold negates the normal and swaps anchors and feature-id hal
   CHECK(back.normal == m.normal);
   CHECK(back.points[0].anchor_a == m.points[0].anchor_a);
   CHECK(back.points[0].id == m.points[0].id);
+}
+
+TEST_CASE("narrow_math: native and portable definitions agree", "[physics][manifold]") {
+  // narrow_math.h defines its sums of products and clipping fractions once
+  // (wide.h limbs, long division); the native paths (__int128, divq) must
+  // give those bits, in range and, wrapping, out of it. In range the product
+  // sums also match the checked operators except at exact negative ties.
+  std::mt19937_64 rng(20);
+  const auto draw = [&rng](int bits) {
+    const uint64_t r = rng();
+    const int64_t v = static_cast<int64_t>(r >> (64 - bits));
+    return (r & 1) != 0 ? -v : v;
+  };
+  int ties = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const int64_t a = draw(53), b = draw(33), c = draw(53), d = draw(33);
+    const int64_t got = narrow_math::sum_products(a, b, c, d);
+    REQUIRE(got == narrow_math::sum_products_portable(a, b, c, d));
+    const Q32 checked = Q32::from_raw(a) * Q32::from_raw(b) + Q32::from_raw(c) * Q32::from_raw(d);
+    // Two roundings in the checked sum: within one raw unit of the one rounding.
+    CHECK(std::llabs(got - checked.raw) <= 1);
+    const Q32 once = dot(Vec2{Q32::from_raw(a), Q32::from_raw(c)}, Vec2{Q32::from_raw(b), Q32::from_raw(d)});
+    if (got != once.raw) {
+      ++ties;
+      CHECK(got == once.raw + 1);  // only a negative exact tie: rounded up instead of away from zero
+    }
+    // Out of range: both wrap the same way.
+    const int64_t wa = draw(63), wb = draw(63), wc = draw(63), wd = draw(63);
+    REQUIRE(narrow_math::sum_products(wa, wb, wc, wd) == narrow_math::sum_products_portable(wa, wb, wc, wd));
+    // Clipping fractions 0 ≤ n ≤ d: exact quotient and the Q32 division's bits.
+    const int64_t den = std::max<int64_t>(1, std::llabs(draw(54)));
+    const int64_t num = static_cast<int64_t>(rng() % (static_cast<uint64_t>(den) + 1));
+    uint64_t r_native = 0, r_portable = 0;
+    const uint64_t q_native = narrow_math::fraction_quotient(static_cast<uint64_t>(num), static_cast<uint64_t>(den), &r_native);
+    const uint64_t q_portable =
+        narrow_math::fraction_quotient_portable(static_cast<uint64_t>(num), static_cast<uint64_t>(den), &r_portable);
+    REQUIRE(q_native == q_portable);
+    REQUIRE(r_native == r_portable);
+    REQUIRE(narrow_math::fraction(Q32::from_raw(num), Q32::from_raw(den)) == Q32::from_raw(num) / Q32::from_raw(den));
+  }
+  CHECK(ties < 100);
 }
