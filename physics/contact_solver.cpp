@@ -111,6 +111,7 @@
 
 #include <bit>
 
+#include "physics/contact_colour.h"
 #include "physics/fast_math.h"
 #include "physics/world.h"
 
@@ -304,50 +305,10 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->constraint_count = count;
   for (int32_t i = 0; i < context->solver_body_count; ++i) context->bounce_marks[i] = -1;
 
-  // Graph colouring (greedy, in contact order): each constraint takes the
-  // lowest colour not yet used by either of its movable bodies (a body with
-  // zero inverse mass and inertia — kinematic — is never changed by the
-  // solver, so it constrains nothing); constraints that find no free colour
-  // go to the overflow colour, solved last. Constraints are then stored
-  // colour by colour, in contact order within a colour. Consecutive
-  // constraints of one colour touch disjoint bodies, so the scalar loops
-  // below carry no memory dependency from one to the next (the processor
-  // overlaps them) and a wide solver could take a colour in lanes.
-  uint32_t* colour_masks = arena_allocate_array<uint32_t>(arena, context->solver_body_count, "colour_masks");
-  int32_t* colour_of = arena_allocate_array<int32_t>(arena, count, "constraint_colours");
-  for (int32_t i = 0; i < context->solver_body_count; ++i) colour_masks[i] = 0;
-  int32_t colour_start[k_contact_colour_count + 2] = {};
-  {
-    const auto movable = [context](int32_t solver_index) {
-      if (solver_index < 0) return false;
-      const SolverBodyParams& p = context->params[solver_index];
-      return p.inv_mass != Q32::zero() || p.inv_inertia != Q32::zero();
-    };
-    int32_t n = 0;
-    for (const Contact& c : contacts) {
-      if ((c.flags & k_contact_touching) == 0) continue;
-      const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
-      const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
-      if (ia == k_null_index && ib == k_null_index) continue;
-      const bool ma = movable(ia), mb = movable(ib);
-      const uint32_t used = (ma ? colour_masks[ia] : 0u) | (mb ? colour_masks[ib] : 0u);
-      const uint32_t free = ~used & ((uint32_t{1} << k_contact_colour_count) - 1u);
-      int32_t colour = k_contact_colour_count;  // overflow
-      if (free != 0) {
-        colour = std::countr_zero(free);
-        if (ma) colour_masks[ia] |= uint32_t{1} << colour;
-        if (mb) colour_masks[ib] |= uint32_t{1} << colour;
-      }
-      colour_of[n++] = colour;
-      ++colour_start[colour + 1];
-    }
-    for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
-    for (int32_t k = 0; k <= k_contact_colour_count + 1; ++k) context->colour_offsets[k] = colour_start[k];
-    context->colour_count = 0;
-    for (int32_t k = 0; k <= k_contact_colour_count; ++k)
-      if (colour_start[k + 1] > colour_start[k]) context->colour_count = k + 1;
-    context->overflow_constraint_count = colour_start[k_contact_colour_count + 1] - colour_start[k_contact_colour_count];
-  }
+  // Graph colours (contact_colour.cpp): constraints are stored colour by
+  // colour, in contact order within a colour.
+  int32_t colour_start[k_contact_colour_count + 2];
+  int32_t* colour_of = colour_contact_constraints(world, context, count, &colour_start);
 
   int32_t n = 0;
   for (size_t ci = 0; ci < contacts.size(); ++ci) {
@@ -445,7 +406,6 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     }
   }
   arena_free(arena, colour_of);
-  arena_free(arena, colour_masks);
 }
 
 void record_contact_approach(StepContext* context) {
