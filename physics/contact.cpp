@@ -44,7 +44,10 @@ namespace tandem {
 
 uint64_t contact_key(const Contact& contact) { return shape_pair_key(contact.shape_a, contact.shape_b); }
 
-Q32 mix_friction(Q32 a, Q32 b) {
+namespace {
+
+/// mix_friction's body, inlined into the narrow phase.
+inline Q32 mix_friction_inline(Q32 a, Q32 b) {
   // Equal frictions above 1/2 mix to themselves, bit for bit, without the
   // root: with x = a.raw > 2^31, a·a rounds to r where |r·2^32 − x²| ≤ 2^31,
   // so √(r·2^32) lies within 2^31/(2x) < 1/2 raw unit of x and the correctly
@@ -53,6 +56,10 @@ Q32 mix_friction(Q32 a, Q32 b) {
   // a, b ≤ k_max_friction = 100: the product ≤ 1e4, no saturation.
   return sqrt(a * b);
 }
+
+}  // namespace
+
+Q32 mix_friction(Q32 a, Q32 b) { return mix_friction_inline(a, b); }
 
 Q32 mix_restitution(Q32 a, Q32 b) { return max(a, b); }
 
@@ -72,8 +79,8 @@ void update_manifold(const World& world, Contact* c, const Contact* old) {
   } else {
     c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
   }
-  c->friction = mix_friction(shape_a.friction, shape_b.friction);
-  c->restitution = mix_restitution(shape_a.restitution, shape_b.restitution);
+  c->friction = mix_friction_inline(shape_a.friction, shape_b.friction);
+  c->restitution = max(shape_a.restitution, shape_b.restitution);  // mix_restitution
   c->normal_impulse = {};
   c->tangent_impulse = {};
   const int32_t count = c->manifold.point_count;
@@ -114,11 +121,13 @@ void update_contacts(World* world) {
   size_t cursor = 0;
   for (const ShapePair& pair : pairs) {
     const uint64_t key = shape_pair_key(pair.shape_a, pair.shape_b);
-    while (cursor < old_list.size() && contact_key(old_list[cursor]) < key) ++cursor;  // destroyed
+    // (the key computed inline: contact_key() lives out of line for other files)
+    const auto old_key = [&old_list](size_t i) { return shape_pair_key(old_list[i].shape_a, old_list[i].shape_b); };
+    while (cursor < old_list.size() && old_key(cursor) < key) ++cursor;  // destroyed
     const Contact* old = nullptr;
     const uint32_t gen_a = id_pool_generation(world->shape_pool, pair.shape_a);
     const uint32_t gen_b = id_pool_generation(world->shape_pool, pair.shape_b);
-    if (cursor < old_list.size() && contact_key(old_list[cursor]) == key) {
+    if (cursor < old_list.size() && old_key(cursor) == key) {
       const Contact& candidate = old_list[cursor];
       if (candidate.generation_a == gen_a && candidate.generation_b == gen_b) old = &candidate;
       ++cursor;

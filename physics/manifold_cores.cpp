@@ -339,7 +339,7 @@ Manifold collide_core_pair(const Core& a, Transform xf_a, const Core& b_local, T
 
 namespace manifold_detail {
 
-bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transform xf_b, const Manifold& previous,
+bool reclip_polygons(const Polygon& a, const Transform& xf_a, const Polygon& b, const Transform& xf_b, const Manifold& previous,
                      Manifold* out) {
   // Which edges clipped last step, from the two feature ids alone (clip()
   // writes (r, i+1) and (r+1, i) with A as reference, (i+1, r) and (i, r+1)

@@ -179,7 +179,7 @@ inline constexpr Q32 k_reclip_min_overlap = Q32::from_raw(k_linear_slop.raw * 2)
 /// runs the full SAT). Uses only the previous manifold's point count and ids
 /// and the current poses, so a world restored from a snapshot decides the
 /// same way.
-bool reclip_polygons(const Polygon& a, Transform xf_a, const Polygon& b, Transform xf_b, const Manifold& previous,
+bool reclip_polygons(const Polygon& a, const Transform& xf_a, const Polygon& b, const Transform& xf_b, const Manifold& previous,
                      Manifold* out);
 
 /// The closest features of two disjoint cores.
