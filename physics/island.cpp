@@ -5,6 +5,12 @@
 // (sorted by shape-pair key); union always makes the lower root the parent,
 // so the root of a set is its lowest body index whatever the union order;
 // path halving only shortens paths. Nothing depends on addresses.
+//
+// Workers (task.h): the sleep timers are per body and run in fixed blocks
+// on any thread; the islands (union-find in contact order, then joint order)
+// stay on the stepping thread, so the union order is the data's. They are
+// built only when some body's timer has run out: a step in which every
+// awake body still moves, or no body is awake, pays only the timer pass.
 #include "physics/island.h"
 
 #include "physics/world.h"
@@ -30,6 +36,9 @@ void wake_one(Body* b) {
   b->sleep_time = Q32::zero();
   b->sleep_island = k_null_index;
 }
+
+/// Bodies per block of the parallel sleep-timer pass.
+constexpr int32_t k_sleep_block = 256;
 
 /// Root of `i` with path halving; parents always have lower indices.
 int32_t find_root(int32_t* parent, int32_t i) {
@@ -175,20 +184,41 @@ void stage_update_sleep(World* world, StepContext* context) {
   const Q32 dt = context->dt;
 
   // 1. Timers of the bodies simulated this step (finalize may have disabled
-  //    some: they are skipped).
-  for (int32_t b = 0; b < end; ++b) {
-    Body& body = world->bodies[static_cast<size_t>(b)];
-    if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
-    const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
-    const bool still = enabled && body.enable_sleep && !length_exceeds(sim.linear_velocity, k_linear_sleep_tolerance) &&
-                       abs(sim.angular_velocity) <= k_angular_sleep_tolerance;
-    // sleep_time ≤ k_time_to_sleep and dt ≤ k_max_time_step: the sum fits.
-    body.sleep_time = still ? min(body.sleep_time + dt, k_time_to_sleep) : Q32::zero();
+  //    some: they are skipped), per body in blocks of k_sleep_block on any
+  //    thread (a body writes only its own timer). Each block also counts its
+  //    bodies whose timer has run out; the counts are summed in block order.
+  Arena* arena = &world->arena;
+  const int32_t blocks = block_count_of(end, k_sleep_block);
+  int32_t* ready_per_block = arena_allocate_array<int32_t>(arena, blocks, "sleep_ready_per_block");
+  {
+    World* w = world;
+    parallel_for(context->tasks, "sleep_timers", end, k_sleep_block, [=](int32_t begin, int32_t stop) {
+      int32_t ready = 0;
+      for (int32_t b = begin; b < stop; ++b) {
+        Body& body = w->bodies[static_cast<size_t>(b)];
+        if (!id_pool_is_alive(w->body_pool, b) || !body_is_simulated(body)) continue;
+        const BodySim& sim = w->body_sims[static_cast<size_t>(b)];
+        const bool still = enabled && body.enable_sleep &&
+                           !length_exceeds(sim.linear_velocity, k_linear_sleep_tolerance) &&
+                           abs(sim.angular_velocity) <= k_angular_sleep_tolerance;
+        // sleep_time ≤ k_time_to_sleep and dt ≤ k_max_time_step: the sum fits.
+        body.sleep_time = still ? min(body.sleep_time + dt, k_time_to_sleep) : Q32::zero();
+        ready += body.sleep_time < k_time_to_sleep ? 0 : 1;
+      }
+      ready_per_block[begin / k_sleep_block] = ready;
+    });
   }
+  int32_t ready = 0;
+  for (int32_t k = 0; k < blocks; ++k) ready += ready_per_block[k];
+  arena_free(arena, ready_per_block);
   if (!enabled) return;
+  // Only a simulated body whose timer has run out can fall asleep (any other
+  // blocks its own island, step 3), so with none the islands need not be
+  // built: this is every step in which all awake bodies still move, or none
+  // is awake.
+  if (ready == 0) return;
 
   // 2. Union-find over touching contacts between two simulated dynamic bodies.
-  Arena* arena = &world->arena;
   int32_t* parent = arena_allocate_array<int32_t>(arena, end, "island_parent");
   uint8_t* blocked = arena_allocate_array<uint8_t>(arena, end, "island_blocked");
   for (int32_t b = 0; b < end; ++b) {
