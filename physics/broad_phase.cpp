@@ -76,7 +76,14 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
   return bp.custom_filter(make_shape_id(*world, lower), make_shape_id(*world, higher), bp.custom_context);
 }
 
-/// Lists the proxies and fills the by-shape arrays.
+/// Shapes per block of the parallel per-shape part of gather_proxies.
+constexpr int32_t k_proxy_block = 256;
+
+/// Lists the proxies and fills the by-shape arrays. The per-shape part (kind,
+/// sanitised fat box, filter copy: each shape writes only its own slots) runs
+/// in fixed blocks of k_proxy_block shapes on any thread (task.h); the list
+/// is then built serially in ascending shape index from the kinds, so it is
+/// the same for every worker count.
 void gather_proxies(World* world) {
   BroadPhase& bp = world->broad_phase;
   const int32_t capacity = id_pool_capacity(world->shape_pool);
@@ -89,22 +96,32 @@ void gather_proxies(World* world) {
   if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
   // Slots beyond the pool (a restore may leave fewer) take no part.
   for (size_t s = cap; s < bp.shape_kind.size(); ++s) bp.shape_kind[s] = k_proxy_none;
+  const World* w = world;
+  uint8_t* kinds = bp.shape_kind.data();
+  AABB* fats = bp.shape_fat.data();
+  ProxyFilter* filters = bp.shape_filter.data();
+  parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, [=](int32_t begin, int32_t end) {
+    for (int32_t s = begin; s < end; ++s) {
+      const size_t si = static_cast<size_t>(s);
+      kinds[si] = k_proxy_none;
+      if (!id_pool_is_alive(w->shape_pool, s)) continue;
+      const Shape& shape = w->shapes[si];
+      const Body& body = w->bodies[static_cast<size_t>(shape.body_index)];
+      if (shape.is_sensor || !body.enabled) continue;
+      const bool dynamic = body.type == BodyType::dynamic_body;
+      kinds[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
+      fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
+      filters[si] =
+          ProxyFilter{shape.body_index, shape.filter.group_index, shape.filter.category_bits, shape.filter.mask_bits};
+    }
+  });
   for (int32_t s = 0; s < capacity; ++s) {
     const size_t si = static_cast<size_t>(s);
-    bp.shape_kind[si] = k_proxy_none;
-    if (!id_pool_is_alive(world->shape_pool, s)) continue;
-    const Shape& shape = world->shapes[si];
-    const Body& body = world->bodies[static_cast<size_t>(shape.body_index)];
-    if (shape.is_sensor || !body.enabled) continue;
-    const bool dynamic = body.type == BodyType::dynamic_body;
-    const AABB fat = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
-    bp.shape_kind[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
-    bp.shape_fat[si] = fat;
-    bp.shape_filter[si] =
-        ProxyFilter{shape.body_index, shape.filter.group_index, shape.filter.category_bits, shape.filter.mask_bits};
+    const uint8_t kind = kinds[si];
+    if (kind == k_proxy_none) continue;
     bp.proxies.push_back(s);
-    bp.fat_bounds.push_back(fat);
-    bp.proxy_dynamic.push_back(dynamic ? 1 : 0);
+    bp.fat_bounds.push_back(fats[si]);
+    bp.proxy_dynamic.push_back(kind == k_proxy_dynamic ? 1 : 0);
   }
 }
 

@@ -39,6 +39,16 @@
 // index; candidates in ascending shape index; ties in t keep the first. Each
 // non-bullet depends only on its own sweep and on static/kinematic bodies, so
 // the result does not depend on the order of non-bullets among themselves.
+// Likewise a bullet depends only on its own sweep and on bodies that are not
+// bullets (final after the non-bullet pass).
+//
+// WORKERS (task.h). So each pass is split in two: the first-impact searches
+// of its fast bodies run in fixed blocks of k_sweep_block bodies on any
+// thread in any order, each writing only its own fraction slot; the stepping
+// thread then moves the bodies that hit, in list order. No search reads a
+// pose its own pass moves, so the result is the serial one for every worker
+// count. The fast-body test is per body (blocks of k_fast_test_block) into a
+// per-body mark; the lists are built from the marks serially.
 //
 // COST. Candidate static/kinematic shapes are gathered once per step (only
 // when some body is fast) and each fast body tests those whose AABB meets its
@@ -154,12 +164,14 @@ bool may_collide(const World& world, int32_t shape_a, int32_t shape_b) {
 }
 
 /// Sweeps the body of solver index i against `candidates` (each held at its
-/// end_pose) and moves its end pose to the first impact.
-void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* candidates, int32_t candidate_count) {
+/// end_pose) and returns the fraction of its first impact (1 when none).
+/// Reads only: the search runs on any thread, move_to_impact applies it.
+Q32 first_impact(const World* world, const StepContext* context, int32_t i, const int32_t* candidates,
+                 int32_t candidate_count) {
   const int32_t b = context->solver_to_body[i];
   const Body& body = world->bodies[static_cast<size_t>(b)];
   const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
-  BodyState& state = context->states[i];
+  const BodyState& state = context->states[i];
   const Sweep sweep = body_sweep(sim, state);
   const Transform end{state.center - rotate(state.rotation, sim.local_center), state.rotation};
 
@@ -206,11 +218,48 @@ void sweep_body(World* world, StepContext* context, int32_t i, const int32_t* ca
       }
     }
   }
-  if (best < Q32::one()) {
-    const Transform xf = sweep_transform(sweep, best);
-    state.rotation = xf.q;
-    state.center = transform_point(xf, sim.local_center);
-    context->continuous_hits += 1;
+  return best;
+}
+
+/// Moves the end pose of the body of solver index i to the fraction `best`
+/// (< 1) of its sweep.
+void move_to_impact(World* world, StepContext* context, int32_t i, Q32 best) {
+  const BodySim& sim = world->body_sims[static_cast<size_t>(context->solver_to_body[i])];
+  BodyState& state = context->states[i];
+  const Transform xf = sweep_transform(body_sweep(sim, state), best);
+  state.rotation = xf.q;
+  state.center = transform_point(xf, sim.local_center);
+  context->continuous_hits += 1;
+}
+
+/// Fast bodies per block of the parallel sweeps (a sweep is a handful of
+/// time-of-impact searches: small blocks balance the workers).
+constexpr int32_t k_sweep_block = 4;
+/// Solver bodies per block of the parallel fast-body test.
+constexpr int32_t k_fast_test_block = 64;
+
+/// Finds the first impact of each body in `list` (solver indices, ascending)
+/// against `candidates`, in parallel blocks of k_sweep_block into
+/// fractions[k], then moves the bodies that hit, in list order. The searches
+/// only read (poses of static and kinematic bodies, and of non-bullets when
+/// bullets sweep, none of which a search of the same pass moves), so the
+/// result does not depend on the worker count or the order the blocks run.
+/// A custom filter is called from the stepping thread only (it need not be
+/// thread-safe), so with one installed the blocks run there in order.
+void sweep_and_move(World* world, StepContext* context, const char* stage, const int32_t* list, int32_t list_count,
+                    const int32_t* candidates, int32_t candidate_count, Q32* fractions) {
+  const World* w = world;
+  const StepContext* c = context;
+  const auto search = [=](int32_t begin, int32_t end) {
+    for (int32_t k = begin; k < end; ++k) fractions[k] = first_impact(w, c, list[k], candidates, candidate_count);
+  };
+  if (world->broad_phase.custom_filter != nullptr) {
+    search(0, list_count);
+  } else {
+    parallel_for(context->tasks, stage, list_count, k_sweep_block, search);
+  }
+  for (int32_t k = 0; k < list_count; ++k) {
+    if (fractions[k] < Q32::one()) move_to_impact(world, context, list[k], fractions[k]);
   }
 }
 
@@ -238,31 +287,47 @@ void stage_continuous(World* world, StepContext* context) {
   const int32_t count = context->solver_body_count;
   if (count == 0) return;
   Arena* arena = &world->arena;
-  // Fast bodies, marked per solver index (0: slow, 1: fast, 2: fast bullet).
+  // Fast bodies, marked per solver index (0: slow, 1: fast, 2: fast bullet),
+  // each block of bodies on any thread (a body writes only its own mark).
   uint8_t* fast = arena_allocate_array<uint8_t>(arena, count, "fast_bodies");
+  {
+    const World* w = world;
+    const StepContext* c = context;
+    parallel_for(context->tasks, "continuous_fast_test", count, k_fast_test_block, [=](int32_t begin, int32_t end) {
+      for (int32_t i = begin; i < end; ++i) {
+        fast[i] = 0;
+        const int32_t b = c->solver_to_body[i];
+        const Body& body = w->bodies[static_cast<size_t>(b)];
+        if (body.type != BodyType::dynamic_body || body.shape_count == 0) continue;
+        const BodySim& sim = w->body_sims[static_cast<size_t>(b)];
+        const BodyState& state = c->states[i];
+        // |Δc| ≤ |Δx| + |Δy|: the square root only where that bound says "maybe fast".
+        const Vec2 d = state.center - sim.center;
+        const Q32 turn = body.max_extent * abs(state.angular_velocity) * c->dt;
+        if ((abs(d.x) + abs(d.y) + turn) * 2 <= body.min_extent) continue;
+        if ((length(d) + turn) * 2 > body.min_extent) fast[i] = body.bullet ? 2 : 1;
+      }
+    });
+  }
+  // The fast bodies in ascending solver index (= ascending body index), non-
+  // bullets first in the list, bullets after them.
+  int32_t* list = arena_allocate_array<int32_t>(arena, count, "ccd_fast_list");
   int32_t fast_count = 0, bullet_count = 0;
   for (int32_t i = 0; i < count; ++i) {
-    fast[i] = 0;
-    const int32_t b = context->solver_to_body[i];
-    const Body& body = world->bodies[static_cast<size_t>(b)];
-    if (body.type != BodyType::dynamic_body || body.shape_count == 0) continue;
-    const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
-    const BodyState& state = context->states[i];
-    // |Δc| ≤ |Δx| + |Δy|: the square root only where that bound says "maybe fast".
-    const Vec2 d = state.center - sim.center;
-    const Q32 turn = body.max_extent * abs(state.angular_velocity) * context->dt;
-    if ((abs(d.x) + abs(d.y) + turn) * 2 <= body.min_extent) continue;
-    if ((length(d) + turn) * 2 > body.min_extent) {
-      fast[i] = body.bullet ? 2 : 1;
-      ++fast_count;
-      if (body.bullet) ++bullet_count;
-    }
+    if (fast[i] == 1) list[fast_count++] = i;
   }
+  for (int32_t i = 0; i < count; ++i) {
+    if (fast[i] == 2) list[fast_count + bullet_count++] = i;
+  }
+  const int32_t non_bullet_count = fast_count;
+  fast_count += bullet_count;
   context->fast_body_count = fast_count;
   if (fast_count == 0) {
+    arena_free(arena, list);
     arena_free(arena, fast);
     return;
   }
+  Q32* fractions = arena_allocate_array<Q32>(arena, fast_count, "ccd_fractions");
   // Static and kinematic shapes (the obstacles of every fast body).
   const int32_t shape_capacity = static_cast<int32_t>(world->shapes.size());
   int32_t* obstacles = arena_allocate_array<int32_t>(arena, shape_capacity, "ccd_obstacles");
@@ -273,9 +338,7 @@ void stage_continuous(World* world, StepContext* context) {
     const Body& owner = world->bodies[static_cast<size_t>(shape.body_index)];
     if (owner.type != BodyType::dynamic_body && !shape.is_sensor) obstacles[obstacle_count++] = s;
   }
-  for (int32_t i = 0; i < count; ++i) {
-    if (fast[i] == 1) sweep_body(world, context, i, obstacles, obstacle_count);
-  }
+  sweep_and_move(world, context, "continuous_sweep", list, non_bullet_count, obstacles, obstacle_count, fractions);
   // Bullets: also against non-bullet dynamic bodies at their final pose.
   if (bullet_count > 0) {
     int32_t* targets = arena_allocate_array<int32_t>(arena, shape_capacity, "ccd_bullet_targets");
@@ -287,12 +350,13 @@ void stage_continuous(World* world, StepContext* context) {
       const Body& owner = world->bodies[static_cast<size_t>(shape.body_index)];
       if (owner.type != BodyType::dynamic_body || !owner.bullet) targets[target_count++] = s;
     }
-    for (int32_t i = 0; i < count; ++i) {
-      if (fast[i] == 2) sweep_body(world, context, i, targets, target_count);
-    }
+    sweep_and_move(world, context, "continuous_bullet_sweep", list + non_bullet_count, bullet_count, targets,
+                   target_count, fractions + non_bullet_count);
     arena_free(arena, targets);
   }
   arena_free(arena, obstacles);
+  arena_free(arena, fractions);
+  arena_free(arena, list);
   arena_free(arena, fast);
 }
 

@@ -5,6 +5,17 @@
 // (sorted by shape-pair key); union always makes the lower root the parent,
 // so the root of a set is its lowest body index whatever the union order;
 // path halving only shortens paths. Nothing depends on addresses.
+//
+// Workers (task.h): the per-body passes (sleep timers, the start states of
+// stage_wake_touched) and stage_wake_touched's scan for its first waking
+// contact run in fixed blocks on any thread, each block writing its own
+// slots and a per-block count or first index that the stepping thread
+// combines in block order. Waking (from the first waking contact on) and the
+// islands (union-find in contact order, then joint order) stay on the
+// stepping thread, so the order of wakes and unions is the data's. The
+// islands are built only when some body's timer has run out: a step in
+// which every awake body still moves, or no body is awake, pays only the
+// timer pass.
 #include "physics/island.h"
 
 #include "physics/world.h"
@@ -30,6 +41,12 @@ void wake_one(Body* b) {
   b->sleep_time = Q32::zero();
   b->sleep_island = k_null_index;
 }
+
+/// Bodies per block of the parallel per-body passes (sleep timers, wake
+/// start states).
+constexpr int32_t k_sleep_block = 256;
+/// Contacts per block of the parallel scan for the first waking contact.
+constexpr int32_t k_wake_scan_block = 512;
 
 /// Root of `i` with path halving; parents always have lower indices.
 int32_t find_root(int32_t* parent, int32_t i) {
@@ -123,49 +140,82 @@ void wake_all_bodies(World* world) {
 }
 
 void stage_wake_touched(World* world, StepContext* context) {
-  (void)context;
   // The rule, contact by contact in contact order: a touching contact wakes
   // the island of a sleeping body whose other body wakes others. Bodies only
   // go from asleep to awake here, so (1) with no sleeper at the start there
   // is nothing to do, and (2) until the first wake of this pass every body's
   // state is still its state at the start, which a per-body byte array
-  // holds; the contact loop then reads two bytes instead of two Body
-  // records. After the first wake the records are read again (a woken body
-  // now wakes others). Same wakes in the same order as testing the records
-  // for every contact.
+  // holds. So the pass is in two parts: the first contact that wakes
+  // something is found from the start states alone (a pure test: blocks of
+  // k_wake_scan_block contacts on any thread, each reporting its first
+  // candidate, combined in block order into the lowest); from there on the
+  // contacts are walked serially reading the Body records (a woken body now
+  // wakes others). Same wakes in the same order as testing the records for
+  // every contact; a step that wakes nobody (a sleeping pile while the
+  // awake bodies stay away) pays only the parallel scan.
   const int32_t end = id_pool_capacity(world->body_pool);
   constexpr uint8_t k_sleeping = 1, k_wakes_others = 2;
   Arena* arena = &world->arena;
   uint8_t* start = arena_allocate_array<uint8_t>(arena, end, "wake_start_states");
-  int32_t sleepers = 0;
-  for (int32_t b = 0; b < end; ++b) {
-    const Body& body = world->bodies[static_cast<size_t>(b)];
-    uint8_t state = 0;
-    if (id_pool_is_alive(world->body_pool, b)) {
-      if (is_sleeping(body)) state = k_sleeping;
-      if (wakes_others(body)) state = k_wakes_others;
-    }
-    sleepers += state == k_sleeping ? 1 : 0;
-    start[b] = state;
+  const int32_t body_blocks = block_count_of(end, k_sleep_block);
+  int32_t* sleepers_per_block = arena_allocate_array<int32_t>(arena, body_blocks, "wake_sleepers_per_block");
+  {
+    const World* w = world;
+    parallel_for(context->tasks, "wake_start_states", end, k_sleep_block, [=](int32_t begin, int32_t stop) {
+      int32_t sleepers = 0;
+      for (int32_t b = begin; b < stop; ++b) {
+        const Body& body = w->bodies[static_cast<size_t>(b)];
+        uint8_t state = 0;
+        if (id_pool_is_alive(w->body_pool, b)) {
+          if (is_sleeping(body)) state = k_sleeping;
+          if (wakes_others(body)) state = k_wakes_others;
+        }
+        sleepers += state == k_sleeping ? 1 : 0;
+        start[b] = state;
+      }
+      sleepers_per_block[begin / k_sleep_block] = sleepers;
+    });
   }
-  bool woke = false;
-  for (const Contact& c : world->contacts) {
-    if (sleepers == 0) break;
+  int32_t sleepers = 0;
+  for (int32_t k = 0; k < body_blocks; ++k) sleepers += sleepers_per_block[k];
+  const int32_t contact_count = static_cast<int32_t>(world->contacts.size());
+  int32_t first = contact_count;  // the first contact whose start states wake a sleeper
+  if (sleepers > 0 && contact_count > 0) {
+    const int32_t contact_blocks = block_count_of(contact_count, k_wake_scan_block);
+    int32_t* first_per_block = arena_allocate_array<int32_t>(arena, contact_blocks, "wake_first_per_block");
+    const Contact* contacts = world->contacts.data();
+    parallel_for(context->tasks, "wake_touched_scan", contact_count, k_wake_scan_block,
+                 [=](int32_t begin, int32_t stop) {
+                   int32_t found = stop;
+                   for (int32_t i = begin; i < stop; ++i) {
+                     const Contact& c = contacts[i];
+                     if ((c.flags & k_contact_touching) == 0) continue;
+                     const uint8_t sa = start[c.body_a], sb = start[c.body_b];
+                     if ((sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others)) {
+                       found = i;
+                       break;
+                     }
+                   }
+                   first_per_block[begin / k_wake_scan_block] = found;
+                 });
+    for (int32_t k = 0; k < contact_blocks; ++k) {
+      const int32_t block_end = k == contact_blocks - 1 ? contact_count : (k + 1) * k_wake_scan_block;
+      if (first_per_block[k] < block_end) {
+        first = first_per_block[k];
+        break;
+      }
+    }
+    arena_free(arena, first_per_block);
+  }
+  for (int32_t i = first; i < contact_count; ++i) {
+    const Contact& c = world->contacts[static_cast<size_t>(i)];
     if ((c.flags & k_contact_touching) == 0) continue;
-    const uint8_t sa = start[c.body_a], sb = start[c.body_b];
-    if (((sa | sb) & k_sleeping) == 0) continue;  // neither can be asleep now
-    if (!woke && !(sa == k_sleeping && sb == k_wakes_others) && !(sb == k_sleeping && sa == k_wakes_others)) continue;
     Body& a = world->bodies[static_cast<size_t>(c.body_a)];
     Body& b = world->bodies[static_cast<size_t>(c.body_b)];
-    if (is_sleeping(a) && wakes_others(b)) {
-      wake_body_island(world, c.body_a);
-      woke = true;
-    }
-    if (is_sleeping(b) && wakes_others(a)) {
-      wake_body_island(world, c.body_b);
-      woke = true;
-    }
+    if (is_sleeping(a) && wakes_others(b)) wake_body_island(world, c.body_a);
+    if (is_sleeping(b) && wakes_others(a)) wake_body_island(world, c.body_b);
   }
+  arena_free(arena, sleepers_per_block);
   arena_free(arena, start);
 }
 
@@ -175,20 +225,41 @@ void stage_update_sleep(World* world, StepContext* context) {
   const Q32 dt = context->dt;
 
   // 1. Timers of the bodies simulated this step (finalize may have disabled
-  //    some: they are skipped).
-  for (int32_t b = 0; b < end; ++b) {
-    Body& body = world->bodies[static_cast<size_t>(b)];
-    if (!id_pool_is_alive(world->body_pool, b) || !body_is_simulated(body)) continue;
-    const BodySim& sim = world->body_sims[static_cast<size_t>(b)];
-    const bool still = enabled && body.enable_sleep && !length_exceeds(sim.linear_velocity, k_linear_sleep_tolerance) &&
-                       abs(sim.angular_velocity) <= k_angular_sleep_tolerance;
-    // sleep_time ≤ k_time_to_sleep and dt ≤ k_max_time_step: the sum fits.
-    body.sleep_time = still ? min(body.sleep_time + dt, k_time_to_sleep) : Q32::zero();
+  //    some: they are skipped), per body in blocks of k_sleep_block on any
+  //    thread (a body writes only its own timer). Each block also counts its
+  //    bodies whose timer has run out; the counts are summed in block order.
+  Arena* arena = &world->arena;
+  const int32_t blocks = block_count_of(end, k_sleep_block);
+  int32_t* ready_per_block = arena_allocate_array<int32_t>(arena, blocks, "sleep_ready_per_block");
+  {
+    World* w = world;
+    parallel_for(context->tasks, "sleep_timers", end, k_sleep_block, [=](int32_t begin, int32_t stop) {
+      int32_t ready = 0;
+      for (int32_t b = begin; b < stop; ++b) {
+        Body& body = w->bodies[static_cast<size_t>(b)];
+        if (!id_pool_is_alive(w->body_pool, b) || !body_is_simulated(body)) continue;
+        const BodySim& sim = w->body_sims[static_cast<size_t>(b)];
+        const bool still = enabled && body.enable_sleep &&
+                           !length_exceeds(sim.linear_velocity, k_linear_sleep_tolerance) &&
+                           abs(sim.angular_velocity) <= k_angular_sleep_tolerance;
+        // sleep_time ≤ k_time_to_sleep and dt ≤ k_max_time_step: the sum fits.
+        body.sleep_time = still ? min(body.sleep_time + dt, k_time_to_sleep) : Q32::zero();
+        ready += body.sleep_time < k_time_to_sleep ? 0 : 1;
+      }
+      ready_per_block[begin / k_sleep_block] = ready;
+    });
   }
+  int32_t ready = 0;
+  for (int32_t k = 0; k < blocks; ++k) ready += ready_per_block[k];
+  arena_free(arena, ready_per_block);
   if (!enabled) return;
+  // Only a simulated body whose timer has run out can fall asleep (any other
+  // blocks its own island, step 3), so with none the islands need not be
+  // built: this is every step in which all awake bodies still move, or none
+  // is awake.
+  if (ready == 0) return;
 
   // 2. Union-find over touching contacts between two simulated dynamic bodies.
-  Arena* arena = &world->arena;
   int32_t* parent = arena_allocate_array<int32_t>(arena, end, "island_parent");
   uint8_t* blocked = arena_allocate_array<uint8_t>(arena, end, "island_blocked");
   for (int32_t b = 0; b < end; ++b) {

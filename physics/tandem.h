@@ -323,7 +323,8 @@ BroadPhaseStats world_get_broad_phase_stats(WorldId world);
 
 /// A user collision filter: return false to keep shapes a and b (a's index
 /// below b's) from forming a contact. Called inside world_step() — by the
-/// broad phase and by continuous collision — for pairs that passed the
+/// broad phase and by continuous collision, always on the thread that called
+/// world_step(), never on a worker — for pairs that passed the
 /// category/mask/group test. It MUST be deterministic — a pure function of
 /// its arguments and of data that every peer holds identically — and must not
 /// change the world (changes are refused while the step runs).

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <thread>
+#include <vector>
 
 #include "physics/tandem.h"
 #include "physics_test_support.h"
@@ -60,7 +62,120 @@ long double shoot_at_wall(bool continuous, BodyType wall_type, bool bullet, bool
   return ld(body_position(ball).x);
 }
 
+/// A volley for the worker tests: 48 balls of 0.1 m at 280–327 m/s (every
+/// third a bullet) towards a row of thin heavy dynamic plates at x = 6 and a
+/// thin static wall at x = 10: 48 fast bodies in a step, so the sweeps run
+/// in 12 blocks, and both passes (non-bullets, then bullets against the
+/// plates' final poses) have work.
+std::vector<BodyId> build_volley(WorldId w) {
+  ShapeDef heavy = default_shape_def();
+  heavy.density = 1000_q32;
+  add_box_body(w, BodyType::static_body, {10_q32, 0_q32}, 0.05_q32, 20_q32);
+  std::vector<BodyId> bodies;
+  for (int k = 0; k < 12; ++k) {
+    bodies.push_back(add_box_body(w, BodyType::dynamic_body, {6_q32, Q32::from_int(3 * k - 17)}, 0.05_q32, 1_q32,
+                                  heavy));
+  }
+  for (int k = 0; k < 48; ++k) {
+    const Vec2 at{Q32::from_ratio(k % 5, 10), Q32::from_ratio(3 * k, 4) - 18_q32};
+    const Vec2 v{Q32::from_int(280 + k), Q32::from_ratio(k % 7 - 3, 2)};
+    bodies.push_back(add_fast_ball(w, at, 0.1_q32, v, k % 3 == 0));
+  }
+  return bodies;
+}
+
+/// Every body's pose and velocity, raw, after each of `steps` steps.
+std::vector<int64_t> run_volley(WorldDef def, int steps, CustomFilterFn filter = nullptr, void* filter_context = nullptr) {
+  ScopedWorld w(def);
+  const std::vector<BodyId> bodies = build_volley(w.id);
+  if (filter != nullptr) REQUIRE(world_set_custom_filter(w.id, filter, filter_context).ok());
+  std::vector<int64_t> trail;
+  for (int i = 0; i < steps; ++i) {
+    const StepResult r = world_step(w.id, k_dt);
+    REQUIRE(r.ok());
+    REQUIRE(r.flags == 0);
+    for (BodyId b : bodies) {
+      const Vec2 p = body_position(b), v = body_linear_velocity(b);
+      const Rot q = body_rotation(b);
+      trail.insert(trail.end(), {p.x.raw, p.y.raw, q.c.raw, q.s.raw, v.x.raw, v.y.raw, body_angular_velocity(b).raw});
+    }
+  }
+  return trail;
+}
+
+/// A single-threaded task system that runs each task's items one at a time
+/// from the last to the first.
+struct ReversingTasks {
+  TaskFunction task = nullptr;
+  int32_t item_count = 0;
+  void* task_context = nullptr;
+};
+
+void* reversing_enqueue(TaskFunction task, int32_t item_count, int32_t, void* task_context, void* user_context) {
+  auto* r = static_cast<ReversingTasks*>(user_context);
+  r->task = task;
+  r->item_count = item_count;
+  r->task_context = task_context;
+  return r;
+}
+
+void reversing_finish(void*, void* user_context) {
+  auto* r = static_cast<ReversingTasks*>(user_context);
+  for (int32_t i = r->item_count - 1; i >= 0; --i) r->task(i, i + 1, r->task_context);
+}
+
+/// A custom filter that accepts every pair and records whether it was ever
+/// called from a thread other than `owner`.
+struct ThreadCheckingFilter {
+  std::thread::id owner;
+  int64_t calls = 0;
+  bool foreign_thread = false;
+};
+
+bool thread_checking_filter(ShapeId, ShapeId, void* context) {
+  auto* f = static_cast<ThreadCheckingFilter*>(context);
+  ++f->calls;
+  if (std::this_thread::get_id() != f->owner) f->foreign_thread = true;
+  return true;
+}
+
 }  // namespace
+
+TEST_CASE("continuous collision gives one worker's bits for every worker count and task order",
+          "[physics][continuous][workers]") {
+  constexpr int k_steps = 8;
+  const std::vector<int64_t> reference = run_volley(zero_gravity_def(true), k_steps);
+  // The scene needs continuous collision: without it the trail differs.
+  CHECK(run_volley(zero_gravity_def(false), k_steps) != reference);
+  for (const int32_t workers : {2, 3, 16}) {
+    WorldDef def = zero_gravity_def(true);
+    def.worker_count = workers;
+    INFO(workers << " workers");
+    CHECK(run_volley(def, k_steps) == reference);
+  }
+  ReversingTasks tasks;
+  WorldDef def = zero_gravity_def(true);
+  def.worker_count = 4;
+  def.enqueue_task = &reversing_enqueue;
+  def.finish_task = &reversing_finish;
+  def.user_task_context = &tasks;
+  CHECK(run_volley(def, k_steps) == reference);
+}
+
+TEST_CASE("continuous collision calls a custom filter on the stepping thread only", "[physics][continuous][workers]") {
+  constexpr int k_steps = 8;
+  ThreadCheckingFilter one;
+  one.owner = std::this_thread::get_id();
+  const std::vector<int64_t> reference = run_volley(zero_gravity_def(true), k_steps, &thread_checking_filter, &one);
+  ThreadCheckingFilter many;
+  many.owner = std::this_thread::get_id();
+  WorldDef def = zero_gravity_def(true);
+  def.worker_count = 4;
+  CHECK(run_volley(def, k_steps, &thread_checking_filter, &many) == reference);
+  CHECK(many.calls == one.calls);
+  CHECK(many.calls > 0);
+  CHECK_FALSE(many.foreign_thread);
+}
 
 TEST_CASE("a fast ball stops at a thin static wall only with continuous collision", "[physics][continuous]") {
   const long double with = shoot_at_wall(true, BodyType::static_body, false);
