@@ -76,14 +76,16 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
   return bp.custom_filter(make_shape_id(*world, lower), make_shape_id(*world, higher), bp.custom_context);
 }
 
-/// Lists the proxies and fills the by-shape arrays.
-void gather_proxies(World* world) {
+}  // namespace
+
+void broad_phase_gather_proxies(World* world) {
   BroadPhase& bp = world->broad_phase;
   const int32_t capacity = id_pool_capacity(world->shape_pool);
   const size_t cap = static_cast<size_t>(capacity);
   bp.proxies.clear();
   bp.fat_bounds.clear();
   bp.proxy_dynamic.clear();
+  bp.sensors.clear();
   if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
   if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
   if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
@@ -95,7 +97,11 @@ void gather_proxies(World* world) {
     if (!id_pool_is_alive(world->shape_pool, s)) continue;
     const Shape& shape = world->shapes[si];
     const Body& body = world->bodies[static_cast<size_t>(shape.body_index)];
-    if (shape.is_sensor || !body.enabled) continue;
+    if (!body.enabled) continue;
+    if (shape.is_sensor) {
+      bp.sensors.push_back(s);
+      continue;
+    }
     const bool dynamic = body.type == BodyType::dynamic_body;
     const AABB fat = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
     bp.shape_kind[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
@@ -107,6 +113,8 @@ void gather_proxies(World* world) {
     bp.proxy_dynamic.push_back(dynamic ? 1 : 0);
   }
 }
+
+namespace {
 
 void naive_update(World* world) {
   BroadPhase& bp = world->broad_phase;
@@ -209,7 +217,7 @@ void broad_phase_update_pairs(World* world) {
   bp.unsorted.clear();
   bp.stats = BroadPhaseStats{};
   bp.candidate_count = 0;
-  gather_proxies(world);
+  broad_phase_gather_proxies(world);
   switch (world->def.broad_phase) {
     case BroadPhaseKind::sweep_and_prune:
       sap_update(world);
@@ -235,6 +243,8 @@ void broad_phase_update_pairs(World* world) {
   const auto elapsed = std::chrono::steady_clock::now() - start;
   const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
   bp.stats.update_nanoseconds = ns > 0 ? static_cast<uint64_t>(ns) : 0;
+  // The rest of the step moves bodies: queries after it re-synchronise.
+  bp.query_synced = false;
 }
 
 void broad_phase_reset(World* world) {
@@ -244,6 +254,8 @@ void broad_phase_reset(World* world) {
   bp.fat_bounds.clear();
   bp.proxy_dynamic.clear();
   bp.unsorted.clear();
+  bp.sensors.clear();
+  bp.query_synced = false;
   sap_reset(&bp.sap);
   tree_reset(&bp.tree);
 }
@@ -276,6 +288,8 @@ void broad_phase_reserve_headroom(World* world) {
   reserve_for(&bp.tree.nodes, 2 * shapes);
   reserve_for(&bp.tree.leaf_of_shape, shapes);
   reserve_for(&bp.tree.stack, 256);
+  reserve_for(&bp.sensors, bp.sensors.size());
+  reserve_for(&bp.sap.wide, bp.sap.wide.size());
 }
 
 // ---------------------------------------------------------------------------

@@ -255,7 +255,7 @@ void tree_reset(DynamicTree* tree) {
   tree->leaf_of_shape.clear();
 }
 
-void tree_update(World* world) {
+void tree_sync(World* world) {
   BroadPhase& bp = world->broad_phase;
   DynamicTree& t = bp.tree;
   const int32_t cap = id_pool_capacity(world->shape_pool);
@@ -284,6 +284,12 @@ void tree_update(World* world) {
     insert_leaf(&t, leaf);
     t.leaf_of_shape[si] = leaf;
   }
+}
+
+void tree_update(World* world) {
+  tree_sync(world);
+  BroadPhase& bp = world->broad_phase;
+  DynamicTree& t = bp.tree;
 
   // All overlapping leaf pairs in one traversal of the tree against itself:
   // a node's pairs are those inside each child plus those across the two
@@ -342,6 +348,28 @@ void tree_update(World* world) {
     }
   }
   bp.candidate_count += candidates;
+}
+
+void tree_query(World* world, BroadPhaseQuery* q) {
+  BroadPhase& bp = world->broad_phase;
+  DynamicTree& t = bp.tree;
+  if (t.root == -1) return;
+  // Depth first, child1 before child2: a function of the tree alone.
+  std::vector<int32_t>& stack = t.stack;
+  stack.clear();
+  stack.push_back(t.root);
+  while (!stack.empty()) {
+    const int32_t i = stack.back();
+    stack.pop_back();
+    const TreeNode& n = t.nodes[static_cast<size_t>(i)];
+    if (!q->accepts(n.box)) continue;
+    if (n.child1 != -1) {
+      stack.push_back(n.child2);
+      stack.push_back(n.child1);
+      continue;
+    }
+    if (q->accepts(bp.shape_fat[static_cast<size_t>(n.shape)])) q->offer(n.shape);
+  }
 }
 
 int32_t tree_validate(const DynamicTree& tree) {
