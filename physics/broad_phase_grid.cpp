@@ -355,9 +355,41 @@ void grid_update(World* world) {
 void grid_query(World* world, BroadPhaseQuery* q) {
   const BroadPhase& bp = world->broad_phase;
   const Grid& g = bp.grid;
-  for_each_entry_near(g, q->box, [&](const GridEntry& e) {
+  const auto test = [&](const GridEntry& e) {
     if (q->accepts(e.box)) q->offer(e.shape);
-  });
+  };
+  if (g.dense && !g.entries.empty()) {
+    // Rows in the ray's vertical direction, each row's cell range from the
+    // query's current box: once a closest-hit visitor has pulled the ray's
+    // end in, the rows beyond it are not read.
+    const int64_t cell = g.cell_size;
+    const int64_t span = 2 * cell;
+    const bool down = q->is_ray && q->translation.y < Q32::zero();
+    const size_t w = static_cast<size_t>(g.width);
+    const uint32_t* starts = g.bucket_start.data();
+    for (int64_t k = 0; k <= g.max_cy - g.min_cy; ++k) {
+      const int64_t cy = down ? g.max_cy - k : g.min_cy + k;
+      const AABB& b = q->box;
+      if (cy < floor_div(2 * clamp_coordinate(b.lower.y.raw) - cell, span)) {
+        if (down) break;
+        continue;
+      }
+      if (cy > floor_div(2 * clamp_coordinate(b.upper.y.raw) + cell, span)) {
+        if (down) continue;
+        break;
+      }
+      int64_t x0 = floor_div(2 * clamp_coordinate(b.lower.x.raw) - cell, span);
+      int64_t x1 = floor_div(2 * clamp_coordinate(b.upper.x.raw) + cell, span);
+      x0 = x0 < g.min_cx ? g.min_cx : x0;
+      x1 = x1 > g.max_cx ? g.max_cx : x1;
+      if (x0 > x1) continue;
+      const size_t row = static_cast<size_t>(cy - g.min_cy) * w;
+      const uint32_t end = starts[row + static_cast<size_t>(x1 - g.min_cx) + 1];
+      for (uint32_t ej = starts[row + static_cast<size_t>(x0 - g.min_cx)]; ej < end; ++ej) test(g.entries[ej]);
+    }
+  } else {
+    for_each_entry_near(g, q->box, test);
+  }
   for (const int32_t i : g.outliers) {
     if (q->accepts(bp.fat_bounds[static_cast<size_t>(i)])) q->offer(bp.proxies[static_cast<size_t>(i)]);
   }

@@ -160,17 +160,31 @@ void broad_phase_query_ray(World* world, Vec2 origin, Vec2 translation, bool inc
 void sap_query(World* world, BroadPhaseQuery* q) {
   const BroadPhase& bp = world->broad_phase;
   const SweepAndPrune& sap = bp.sap;
-  // Narrow proxies: lower x in [x0 − W, x1] (the box may shrink on the way).
-  const int64_t from = q->box.lower.x.raw - sap.query_width;  // ≥ −2^63 + 2^62: box within ±2^61
-  const auto first = std::lower_bound(sap.endpoints.begin(), sap.endpoints.end(), from,
-                                      [](const SapEndpoint& e, int64_t v) { return e.value < v; });
-  const uint64_t limit = static_cast<uint64_t>(sap.query_width);
-  for (auto it = first; it != sap.endpoints.end() && it->value <= q->box.upper.x.raw; ++it) {
-    if ((it->tag & 0x80000000u) != 0) continue;  // a max end point
-    const int32_t s = static_cast<int32_t>(it->tag);
+  const int64_t reach = sap.query_width;
+  const uint64_t limit = static_cast<uint64_t>(reach);
+  const auto try_endpoint = [&](const SapEndpoint& e) {
+    if ((e.tag & 0x80000000u) != 0) return;  // a max end point
+    const int32_t s = static_cast<int32_t>(e.tag);
     const AABB& fat = bp.shape_fat[static_cast<size_t>(s)];
-    if (x_width(fat) > limit) continue;  // wide: below
+    if (x_width(fat) > limit) return;  // wide: below
     if (q->accepts(fat)) q->offer(s);
+  };
+  // Narrow proxies have lower x in [x0 − W, x1] of the query's current box
+  // (x0 − W ≥ −2^62: the box lies within ±2^56, W ≤ 2^62 − 2^56). Walked in
+  // the ray's x direction, so a closest hit that pulls the far end in also
+  // ends the walk.
+  const std::vector<SapEndpoint>& ep = sap.endpoints;
+  const auto by_value = [](const SapEndpoint& e, int64_t v) { return e.value < v; };
+  if (q->is_ray && q->translation.x < Q32::zero()) {
+    auto it = std::lower_bound(ep.begin(), ep.end(), q->box.upper.x.raw + 1, by_value);
+    while (it != ep.begin()) {
+      --it;
+      if (it->value < q->box.lower.x.raw - reach) break;
+      try_endpoint(*it);
+    }
+  } else {
+    auto it = std::lower_bound(ep.begin(), ep.end(), q->box.lower.x.raw - reach, by_value);
+    for (; it != ep.end() && it->value <= q->box.upper.x.raw; ++it) try_endpoint(*it);
   }
   for (const int32_t s : sap.wide) {
     if (q->accepts(bp.shape_fat[static_cast<size_t>(s)])) q->offer(s);

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "fixed/vec2.h"
 #include "profile_stats.h"
 #include "scenes.h"
 
@@ -55,6 +56,29 @@ struct RunResult {
 /// Runs one scene once: build, `warmup` untimed steps, `steps` timed steps.
 using RunFunction = std::function<RunResult(const SceneSpec& scene, int32_t warmup, int32_t steps)>;
 
+/// A ray of the ray-cast benchmark: origin and translation, m (exact Q32;
+/// peers get them as doubles).
+struct RaySpec {
+  Vec2 origin;
+  Vec2 translation;
+};
+
+/// One engine's ray-cast benchmark on one scene: the scene built and stepped
+/// `warmup` steps; then for each of `batches` batches one untimed step (in
+/// Tandem also one untimed query, which re-syncs the broad phase: sync_ms) and
+/// every ray cast once for its closest hit, timed (steady_clock).
+struct RayResult {
+  std::vector<double> rays_per_second;  ///< one per batch
+  std::vector<double> sync_ms;          ///< Tandem: the batch's first, untimed query (broad-phase re-sync), ms
+  int32_t hits = 0;                     ///< rays of the last batch that hit something
+  bool has_fingerprint = false;         ///< Tandem only
+  uint64_t fingerprint = 0;             ///< FNV-1a of the last batch's hits (shape index, fraction raw)
+  std::string error;                    ///< non-empty when the engine refused the scene
+};
+
+using RayFunction = std::function<RayResult(const SceneSpec& scene, int32_t warmup, int32_t batches,
+                                            const std::vector<RaySpec>& rays)>;
+
 /// One engine configuration as it appears in the results.
 struct Engine {
   std::string engine;       ///< "tandem", "box2d24", "chipmunk"
@@ -64,6 +88,7 @@ struct Engine {
   int32_t max_bodies = 0;   ///< skip scenes with more dynamic bodies (0: no limit)
   int32_t workers = 1;      ///< Tandem: WorldDef::worker_count; peers: 1
   RunFunction run;
+  RayFunction cast_rays;    ///< the ray-cast benchmark; empty where not written (Chipmunk, Box2D v3)
 };
 
 /// Tandem's broad phases by short name: "naive", "sap", "grid", "tree".
