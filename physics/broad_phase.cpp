@@ -288,7 +288,7 @@ void broad_phase_reserve_headroom(World* world) {
   reserve_for(&bp.tree.nodes, 2 * shapes);
   reserve_for(&bp.tree.leaf_of_shape, shapes);
   reserve_for(&bp.tree.stack, 256);
-  reserve_for(&bp.sensors, bp.sensors.size());
+  reserve_for(&bp.sensors, shapes);
   reserve_for(&bp.sap.wide, bp.sap.wide.size());
 }
 

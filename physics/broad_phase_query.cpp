@@ -85,8 +85,9 @@ void run_query(World* world, BroadPhaseQuery* q, bool include_sensors) {
     default: naive_query(world, q); break;
   }
   if (!include_sensors) return;
+  // Fattened like the proxies, so the same margin covers a ray's rounding.
   for (const int32_t s : world->broad_phase.sensors) {
-    if (q->accepts(world->shapes[static_cast<size_t>(s)].aabb)) q->offer(s);
+    if (q->accepts(aabb_fatten(world->shapes[static_cast<size_t>(s)].aabb, k_speculative_distance))) q->offer(s);
   }
 }
 

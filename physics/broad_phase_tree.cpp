@@ -354,7 +354,19 @@ void tree_query(World* world, BroadPhaseQuery* q) {
   BroadPhase& bp = world->broad_phase;
   DynamicTree& t = bp.tree;
   if (t.root == -1) return;
-  // Depth first, child1 before child2: a function of the tree alone.
+  // Depth first. A box query takes child1 first; a ray takes first the child
+  // whose box centre comes first along the ray's dominant axis (child1 on a
+  // tie), so a closest-hit query usually meets its hit early and pulls the
+  // ray in. Either order is a function of the tree and the query alone.
+  const auto magnitude = [](int64_t v) { return v < 0 ? uint64_t{0} - static_cast<uint64_t>(v) : static_cast<uint64_t>(v); };
+  const bool along_x = magnitude(q->translation.x.raw) >= magnitude(q->translation.y.raw);
+  const int64_t dir = along_x ? q->translation.x.raw : q->translation.y.raw;
+  // Doubled centre on that axis (< 2^62 for any tree box), negated for a ray
+  // going the negative way: smaller comes first.
+  const auto key = [&](const AABB& b) {
+    const int64_t c2 = along_x ? b.lower.x.raw + b.upper.x.raw : b.lower.y.raw + b.upper.y.raw;
+    return dir < 0 ? -c2 : c2;
+  };
   std::vector<int32_t>& stack = t.stack;
   stack.clear();
   stack.push_back(t.root);
@@ -364,8 +376,10 @@ void tree_query(World* world, BroadPhaseQuery* q) {
     const TreeNode& n = t.nodes[static_cast<size_t>(i)];
     if (!q->accepts(n.box)) continue;
     if (n.child1 != -1) {
-      stack.push_back(n.child2);
-      stack.push_back(n.child1);
+      const bool swap = q->is_ray && key(t.nodes[static_cast<size_t>(n.child2)].box) <
+                                         key(t.nodes[static_cast<size_t>(n.child1)].box);
+      stack.push_back(swap ? n.child1 : n.child2);
+      stack.push_back(swap ? n.child2 : n.child1);
       continue;
     }
     if (q->accepts(bp.shape_fat[static_cast<size_t>(n.shape)])) q->offer(n.shape);
