@@ -192,6 +192,17 @@ AABB broad_phase_sanitize_box(AABB box) {
   return AABB{{x0 < x1 ? x0 : x1, y0 < y1 ? y0 : y1}, {x0 < x1 ? x1 : x0, y0 < y1 ? y1 : y0}};
 }
 
+uint64_t broad_phase_typical_limit(const int32_t* histogram, int32_t count) {
+  const int32_t wanted = count - count / 16;
+  int32_t bucket = 0;
+  for (int32_t seen = 0; bucket < 65; ++bucket) {
+    seen += histogram[bucket];
+    if (seen >= wanted) break;
+  }
+  // Every extent in classes ≤ bucket is < 2^bucket; allow 4× that.
+  return bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+}
+
 void broad_phase_emit_candidate(World* world, int32_t a, int32_t b) {
   BroadPhase& bp = world->broad_phase;
   const size_t ai = static_cast<size_t>(a);

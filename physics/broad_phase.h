@@ -290,6 +290,12 @@ void tree_query(World* world, BroadPhaseQuery* q);
 
 // Shared by the implementations (broad_phase.cpp).
 
+/// The outlier rule of the grid (and of sweep-and-prune's queries): given a
+/// histogram of extents by power-of-two class (histogram[std::bit_width(e)],
+/// 65 entries) over `count` proxies, 4× the class bound that holds 15/16 of
+/// them; extents above it are outsized.
+uint64_t broad_phase_typical_limit(const int32_t* histogram, int32_t count);
+
 /// The candidate (a, b), a ≠ b, in either order: unless both are non-dynamic,
 /// counts it, applies the exact fattened-box test and the filters, and
 /// appends its key to bp.unsorted. The caller guarantees each unordered pair

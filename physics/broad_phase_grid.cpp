@@ -173,14 +173,7 @@ bool grid_build(World* world) {
     for (size_t i = 0; i < n; ++i) ++histogram[std::bit_width(box_extent(bp.fat_bounds[i]))];
     sizing_count = static_cast<int32_t>(n);
   }
-  const int32_t wanted = sizing_count - sizing_count / 16;
-  int32_t bucket = 0;
-  for (int32_t seen = 0; bucket < 65; ++bucket) {
-    seen += histogram[bucket];
-    if (seen >= wanted) break;
-  }
-  // Every extent in classes ≤ bucket is < 2^bucket; allow 4× that.
-  const uint64_t typical_limit = bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+  const uint64_t typical_limit = broad_phase_typical_limit(histogram, sizing_count);
   uint64_t size = 0;
   for (size_t i = 0; i < n; ++i) {
     if (bp.proxy_dynamic[i] < sizing_flag) continue;

@@ -47,14 +47,7 @@ void sap_prepare_query(BroadPhase* bp) {
   if (n == 0) return;
   int32_t histogram[65] = {};
   for (size_t i = 0; i < n; ++i) ++histogram[std::bit_width(x_width(bp->fat_bounds[i]))];
-  const int32_t count = static_cast<int32_t>(n);
-  const int32_t wanted = count - count / 16;
-  int32_t bucket = 0;
-  for (int32_t seen = 0; bucket < 65; ++bucket) {
-    seen += histogram[bucket];
-    if (seen >= wanted) break;
-  }
-  const uint64_t limit = bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+  const uint64_t limit = broad_phase_typical_limit(histogram, static_cast<int32_t>(n));
   uint64_t widest = 0;
   for (size_t i = 0; i < n; ++i) {
     const uint64_t w = x_width(bp->fat_bounds[i]);
