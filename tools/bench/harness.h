@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,21 +64,28 @@ struct RaySpec {
   Vec2 translation;
 };
 
-/// One engine's ray-cast benchmark on one scene: the scene built and stepped
-/// `warmup` steps; then for each of `batches` batches one untimed step (in
-/// Tandem also one untimed query, which re-syncs the broad phase: sync_ms) and
-/// every ray cast once for its closest hit, timed (steady_clock).
-struct RayResult {
-  std::vector<double> rays_per_second;  ///< one per batch
-  std::vector<double> sync_ms;          ///< Tandem: the batch's first, untimed query (broad-phase re-sync), ms
-  int32_t hits = 0;                     ///< rays of the last batch that hit something
-  bool has_fingerprint = false;         ///< Tandem only
-  uint64_t fingerprint = 0;             ///< FNV-1a of the last batch's hits (shape index, fraction raw)
-  std::string error;                    ///< non-empty when the engine refused the scene
+/// One timed batch of the ray-cast benchmark (ray_bench.cpp).
+struct RayBatch {
+  double rays_per_second = 0;
+  double sync_ms = -1;            ///< Tandem: the untimed first query after the step (broad-phase re-sync); −1: none
+  int32_t hits = 0;               ///< rays that hit something
+  bool has_fingerprint = false;   ///< Tandem only
+  uint64_t fingerprint = 0;       ///< FNV-1a of the hits (shape index, fraction raw)
 };
 
-using RayFunction = std::function<RayResult(const SceneSpec& scene, int32_t warmup, int32_t batches,
-                                            const std::vector<RaySpec>& rays)>;
+/// A scene built in one engine and stepped `warmup` steps, ready to cast
+/// batches of rays; its destructor frees the world.
+class RaySession {
+ public:
+  virtual ~RaySession() = default;
+  /// One untimed step, then every ray cast once for its closest hit, timed
+  /// (steady_clock).
+  virtual RayBatch batch(const std::vector<RaySpec>& rays) = 0;
+};
+
+/// Builds a RaySession; null with *error set when the engine refuses the scene.
+using RayFunction =
+    std::function<std::unique_ptr<RaySession>(const SceneSpec& scene, int32_t warmup, std::string* error)>;
 
 /// One engine configuration as it appears in the results.
 struct Engine {

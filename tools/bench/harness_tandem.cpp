@@ -216,46 +216,59 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
   return result;
 }
 
-RayResult cast_rays_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup,
-                           int32_t batches, const std::vector<RaySpec>& rays) {
-  RayResult result;
-  WorldId world;
-  std::vector<BodyId> bodies;
-  if (!build_tandem(kind, workers, scene, &world, &bodies, &result.error)) return result;
-  const Q32 dt = time_step();
-  for (int32_t batch = -warmup; batch < batches; ++batch) {
-    const StepResult r = world_step(world, dt);
-    if (!r.ok()) {
-      result.error = "world_step: " + r.status.message;
-      break;
-    }
-    if (batch < 0 || rays.empty()) continue;
+class TandemRays final : public RaySession {
+ public:
+  TandemRays(WorldId world, std::vector<BodyId> bodies) : world_(world), bodies_(std::move(bodies)) {}
+  ~TandemRays() override { (void)destroy_world(world_); }
+  TandemRays(const TandemRays&) = delete;
+  TandemRays& operator=(const TandemRays&) = delete;
+
+  RayBatch batch(const std::vector<RaySpec>& rays) override {
+    RayBatch b;
+    (void)world_step(world_, time_step());
+    if (rays.empty()) return b;
     // The first query after a step re-syncs the broad phase with the step's
     // poses (work the next step's broad phase then skips): timed apart.
     const auto s0 = std::chrono::steady_clock::now();
-    (void)world_cast_ray_closest(world, rays[0].origin, rays[0].translation);
+    (void)world_cast_ray_closest(world_, rays[0].origin, rays[0].translation);
     const auto s1 = std::chrono::steady_clock::now();
-    result.sync_ms.push_back(std::chrono::duration<double, std::milli>(s1 - s0).count());
-    // Timed: every ray, closest hit.
-    int32_t hits = 0;
+    b.sync_ms = std::chrono::duration<double, std::milli>(s1 - s0).count();
     Fnv fnv;
     const auto t0 = std::chrono::steady_clock::now();
     for (const RaySpec& ray : rays) {
-      const Result<RayHit> hit = world_cast_ray_closest(world, ray.origin, ray.translation);
+      const Result<RayHit> hit = world_cast_ray_closest(world_, ray.origin, ray.translation);
       if (!hit.value.hit) continue;
-      ++hits;
+      ++b.hits;
       fnv.add(hit.value.shape.index1);
       fnv.add(hit.value.fraction.raw);
     }
     const auto t1 = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(t1 - t0).count();
-    result.rays_per_second.push_back(seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0);
-    result.hits = hits;
-    result.has_fingerprint = true;
-    result.fingerprint = fnv.h;
+    b.rays_per_second = seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0;
+    b.has_fingerprint = true;
+    b.fingerprint = fnv.h;
+    return b;
   }
-  (void)destroy_world(world);
-  return result;
+
+ private:
+  WorldId world_;
+  std::vector<BodyId> bodies_;
+};
+
+std::unique_ptr<RaySession> tandem_rays(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup,
+                                        std::string* error) {
+  WorldId world;
+  std::vector<BodyId> bodies;
+  if (!build_tandem(kind, workers, scene, &world, &bodies, error)) return nullptr;
+  for (int32_t i = 0; i < warmup; ++i) {
+    const StepResult r = world_step(world, time_step());
+    if (!r.ok()) {
+      *error = "world_step (warm-up " + std::to_string(i) + "): " + r.status.message;
+      (void)destroy_world(world);
+      return nullptr;
+    }
+  }
+  return std::make_unique<TandemRays>(world, std::move(bodies));
 }
 
 }  // namespace
@@ -279,9 +292,8 @@ bool tandem_engine(const std::string& broad_phase, int32_t workers, Engine* out)
     e.run = [kind, workers](const SceneSpec& scene, int32_t warmup, int32_t steps) {
       return run_tandem(kind, workers, scene, warmup, steps);
     };
-    e.cast_rays = [kind, workers](const SceneSpec& scene, int32_t warmup, int32_t batches,
-                                  const std::vector<RaySpec>& rays) {
-      return cast_rays_tandem(kind, workers, scene, warmup, batches, rays);
+    e.cast_rays = [kind, workers](const SceneSpec& scene, int32_t warmup, std::string* error) {
+      return tandem_rays(kind, workers, scene, warmup, error);
     };
     *out = std::move(e);
     return true;

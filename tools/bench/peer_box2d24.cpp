@@ -168,35 +168,44 @@ class ClosestCallback : public b2RayCastCallback {
   float best = 1.0f;
 };
 
-RayResult cast_rays_box2d24(const SceneSpec& scene, int32_t warmup, int32_t batches, const std::vector<RaySpec>& rays) {
-  RayResult result;
-  std::vector<b2Body*> bodies;
-  const std::unique_ptr<b2World> world = build_box2d24(scene, &bodies);
-  std::vector<b2Vec2> from, to;
-  for (const RaySpec& r : rays) {
-    from.emplace_back(f32(r.origin.x), f32(r.origin.y));
-    to.emplace_back(static_cast<float>(to_double(r.origin.x) + to_double(r.translation.x)),
-                    static_cast<float>(to_double(r.origin.y) + to_double(r.translation.y)));
-  }
-  const float dt = static_cast<float>(to_double(time_step()));
-  constexpr int32_t velocity_iterations = 8, position_iterations = 3;
-  for (int32_t batch = -warmup; batch < batches; ++batch) {
-    world->Step(dt, velocity_iterations, position_iterations);
-    if (batch < 0) continue;
-    int32_t hits = 0;
+class Box2d24Rays final : public RaySession {
+ public:
+  explicit Box2d24Rays(std::unique_ptr<b2World> world) : world_(std::move(world)) {}
+
+  RayBatch batch(const std::vector<RaySpec>& rays) override {
+    RayBatch b;
+    world_->Step(static_cast<float>(to_double(time_step())), 8, 3);
+    from_.clear();
+    to_.clear();
+    for (const RaySpec& r : rays) {
+      from_.emplace_back(f32(r.origin.x), f32(r.origin.y));
+      to_.emplace_back(static_cast<float>(to_double(r.origin.x) + to_double(r.translation.x)),
+                       static_cast<float>(to_double(r.origin.y) + to_double(r.translation.y)));
+    }
     const auto t0 = std::chrono::steady_clock::now();
-    for (size_t i = 0; i < from.size(); ++i) {
-      if (from[i].x == to[i].x && from[i].y == to[i].y) continue;  // Box2D asserts on a zero-length ray
+    for (size_t i = 0; i < from_.size(); ++i) {
+      if (from_[i].x == to_[i].x && from_[i].y == to_[i].y) continue;  // Box2D asserts on a zero-length ray
       ClosestCallback cb;
-      world->RayCast(&cb, from[i], to[i]);
-      hits += cb.hit ? 1 : 0;
+      world_->RayCast(&cb, from_[i], to_[i]);
+      b.hits += cb.hit ? 1 : 0;
     }
     const auto t1 = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(t1 - t0).count();
-    result.rays_per_second.push_back(seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0);
-    result.hits = hits;
+    b.rays_per_second = seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0;
+    return b;
   }
-  return result;
+
+ private:
+  std::unique_ptr<b2World> world_;
+  std::vector<b2Vec2> from_, to_;
+};
+
+std::unique_ptr<RaySession> box2d24_rays(const SceneSpec& scene, int32_t warmup, std::string* /*error*/) {
+  std::vector<b2Body*> bodies;
+  std::unique_ptr<b2World> world = build_box2d24(scene, &bodies);
+  const float dt = static_cast<float>(to_double(time_step()));
+  for (int32_t i = 0; i < warmup; ++i) world->Step(dt, 8, 3);  // 8 velocity / 3 position iterations
+  return std::make_unique<Box2d24Rays>(std::move(world));
 }
 
 }  // namespace
@@ -243,7 +252,7 @@ Engine box2d24_engine() {
   e.note = "Box2D 2.4.1 (Debian libbox2d), 8 velocity / 3 position iterations";
   e.is_peer = true;
   e.run = run_box2d24;
-  e.cast_rays = cast_rays_box2d24;
+  e.cast_rays = box2d24_rays;
   return e;
 }
 

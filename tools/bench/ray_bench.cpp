@@ -11,9 +11,11 @@
 // zero-length ones redrawn (Box2D asserts on them). The values are exact Q32
 // (raw multiples of 2^-16 m); the peers get them as doubles, then floats.
 //
-// Each engine builds the scene, steps `warmup` steps (default 600, the
-// stepping benchmark's length: the rain has landed in a pile), then for each of
-// `runs` batches steps once (untimed) and casts every ray once, timed. In
+// Every engine builds the scene and steps `warmup` steps (default 600, the
+// stepping benchmark's length: the rain has landed in a pile). Then `runs`
+// rounds: in each, every engine in turn (the order rotating by one each round,
+// so a burst of load on the shared machine does not always hit the same
+// engine) steps once, untimed, and casts every ray once, timed. In
 // Tandem the first query after a step re-syncs the broad phase with the
 // step's poses (physics/broad_phase.h, "Queries") — work the next step's
 // broad phase then skips, so a per-step cost moved, not added: it is timed
@@ -26,6 +28,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 
 #include "suite.h"
 
@@ -82,10 +85,10 @@ int run_ray_bench(const BenchOptions& o, const std::vector<SceneSpec>& scenes, c
                   const std::string& machine) {
   const int32_t warmup = o.warmup >= 0 ? o.warmup : 600;
   std::printf("\nTandem ray-cast benchmark — %s\n", machine.c_str());
-  std::printf("%d rays per batch (closest hit), %d batches after %d warm-up steps, one untimed step before each "
-              "batch. Median rays/s (min-max); ratio = Tandem / peer (above 1: Tandem faster).\n\n",
+  std::printf("%d rays per batch (closest hit), %d rounds after %d warm-up steps; each round every engine steps once "
+              "(untimed) and casts its batch, in a rotating order. Median rays/s over the rounds (min-max); ratio = "
+              "Tandem / peer (above 1: Tandem faster).\n\n",
               o.rays, o.runs, warmup);
-  int status = 0;
   std::ofstream csv;
   if (!o.csv.empty()) {
     csv.open(o.csv);
@@ -95,65 +98,91 @@ int run_ray_bench(const BenchOptions& o, const std::vector<SceneSpec>& scenes, c
     }
     csv << "scene,engine,broad_phase,rays,batches,median_rays_per_s,min,max,hits,median_sync_ms\n";
   }
+  int status = 0;
   for (const SceneSpec& scene : scenes) {
     const std::vector<RaySpec> rays = make_rays(scene, o.rays);
     struct Line {
       std::string label;
       bool peer = false;
-      double median = 0, min = 0, max = 0, sync_ms = 0;
-      RayResult r;
+      std::unique_ptr<RaySession> session;
+      std::string error;
+      std::vector<RayBatch> batches;
     };
     std::vector<Line> lines;
     for (const Engine& e : engines) {
-      const std::string label = e.is_peer ? e.engine : e.engine + "/" + e.broad_phase;
-      if (!e.cast_rays) continue;
-      if (e.max_bodies > 0 && scene.dynamic_count > e.max_bodies) continue;
+      if (!e.cast_rays || (e.max_bodies > 0 && scene.dynamic_count > e.max_bodies)) continue;
       Line line;
-      line.label = label;
+      line.label = e.is_peer ? e.engine : e.engine + "/" + e.broad_phase;
       line.peer = e.is_peer;
-      line.r = e.cast_rays(scene, warmup, o.runs, rays);
-      if (!line.r.rays_per_second.empty()) {
-        line.median = median(line.r.rays_per_second);
-        line.min = *std::min_element(line.r.rays_per_second.begin(), line.r.rays_per_second.end());
-        line.max = *std::max_element(line.r.rays_per_second.begin(), line.r.rays_per_second.end());
-      }
-      if (!line.r.sync_ms.empty()) line.sync_ms = median(line.r.sync_ms);
-      if (!o.quiet) std::fprintf(stderr, "  %-14s %-16s %.0f rays/s\n", scene.name.c_str(), label.c_str(), line.median);
+      if (!o.quiet) std::fprintf(stderr, "  %-14s %-16s building, %d warm-up steps\n", scene.name.c_str(),
+                                 line.label.c_str(), warmup);
+      line.session = e.cast_rays(scene, warmup, &line.error);
+      if (line.session == nullptr && line.error.empty()) line.error = "refused";
       lines.push_back(std::move(line));
+    }
+    const size_t n = lines.size();
+    for (int32_t round = 0; round < o.runs; ++round) {
+      const RayBatch* reference = nullptr;
+      std::string reference_label;
+      for (size_t k = 0; k < n; ++k) {
+        Line& l = lines[(k + static_cast<size_t>(round)) % n];
+        if (l.session == nullptr) continue;
+        l.batches.push_back(l.session->batch(rays));
+        const RayBatch& b = l.batches.back();
+        if (!b.has_fingerprint) continue;
+        // Every Tandem engine is at the same tick in a round: same hits.
+        if (reference == nullptr) {
+          reference = &b;
+          reference_label = l.label;
+        } else if (b.fingerprint != reference->fingerprint || b.hits != reference->hits) {
+          std::fprintf(stderr, "bench: WARNING: %s round %d: %s hits differ from %s\n", scene.name.c_str(), round,
+                       l.label.c_str(), reference_label.c_str());
+          status = 1;
+        }
+      }
+      if (!o.quiet) std::fprintf(stderr, "  %-14s round %d/%d done\n", scene.name.c_str(), round + 1, o.runs);
+    }
+    std::vector<double> medians(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      std::vector<double> rps;
+      for (const RayBatch& b : lines[i].batches) rps.push_back(b.rays_per_second);
+      medians[i] = median(rps);
     }
     std::printf("%-14s %-16s %12s %-25s %7s %8s  %s\n", "scene", "engine", "rays/s", "min-max", "hits", "sync ms",
                 "ratios");
-    const Line* first_tandem = nullptr;
-    for (const Line& l : lines) {
-      if (!l.r.error.empty()) {
-        std::printf("%-14s %-16s error: %s\n", scene.name.c_str(), l.label.c_str(), l.r.error.c_str());
+    for (size_t i = 0; i < n; ++i) {
+      const Line& l = lines[i];
+      if (l.session == nullptr) {
+        std::printf("%-14s %-16s error: %s\n", scene.name.c_str(), l.label.c_str(), l.error.c_str());
         continue;
       }
+      std::vector<double> rps, sync;
+      for (const RayBatch& b : l.batches) {
+        rps.push_back(b.rays_per_second);
+        if (b.sync_ms >= 0) sync.push_back(b.sync_ms);
+      }
+      const double lo = rps.empty() ? 0 : *std::min_element(rps.begin(), rps.end());
+      const double hi = rps.empty() ? 0 : *std::max_element(rps.begin(), rps.end());
+      const int32_t hits = l.batches.empty() ? 0 : l.batches.back().hits;
       char range[64];
-      std::snprintf(range, sizeof range, "%.0f-%.0f", l.min, l.max);
-      std::printf("%-14s %-16s %12.0f %-25s %7d ", scene.name.c_str(), l.label.c_str(), l.median, range, l.r.hits);
-      if (l.peer) {
+      std::snprintf(range, sizeof range, "%.0f-%.0f", lo, hi);
+      std::printf("%-14s %-16s %12.0f %-25s %7d ", scene.name.c_str(), l.label.c_str(), medians[i], range, hits);
+      if (sync.empty()) {
         std::printf("%8s ", "-");
       } else {
-        std::printf("%8.3f ", l.sync_ms);
+        std::printf("%8.3f ", median(sync));
       }
       if (!l.peer) {
-        for (const Line& p : lines) {
-          if (p.peer && p.median > 0) std::printf(" /%s %.2f", p.label.c_str(), l.median / p.median);
-        }
-        if (first_tandem == nullptr) {
-          first_tandem = &l;
-        } else if (l.r.fingerprint != first_tandem->r.fingerprint || l.r.hits != first_tandem->r.hits) {
-          std::printf("  WARNING: hits differ from %s", first_tandem->label.c_str());
-          status = 1;
+        for (size_t k = 0; k < n; ++k) {
+          if (lines[k].peer && medians[k] > 0) std::printf(" /%s %.2f", lines[k].label.c_str(), medians[i] / medians[k]);
         }
       }
       std::printf("\n");
       if (csv) {
         csv << scene.name << ',' << (l.peer ? l.label : "tandem") << ','
-            << (l.peer ? "" : l.label.substr(l.label.find('/') + 1)) << ',' << o.rays << ','
-            << l.r.rays_per_second.size() << ',' << l.median << ',' << l.min << ',' << l.max << ',' << l.r.hits << ','
-            << l.sync_ms << '\n';
+            << (l.peer ? "" : l.label.substr(l.label.find('/') + 1)) << ',' << o.rays << ',' << l.batches.size()
+            << ',' << medians[i] << ',' << lo << ',' << hi << ',' << hits << ',' << (sync.empty() ? 0.0 : median(sync))
+            << '\n';
       }
     }
   }
