@@ -14,15 +14,21 @@
 // than 4× the 15/16-quantile power-of-two width class, the grid's outlier
 // rule: walls and grounds) separately.
 //
+// Sweep-and-prune and the grid walk in the ray's direction (x, resp. rows in
+// y) and the tree takes the nearer child first, re-reading the ray's current
+// bounds as they go, so a closest hit found early ends the walk.
+//
 // The segment test is exact: the segment's bounding box against the box, then
 // the separating axis along the segment's normal, |n·(2c − 2p)| ≤ |n_x|·2h_x +
 // |n_y|·2h_y on doubled raw values in 128-bit integers (fixed/wide.h; the
 // doubled box terms stay below 2^62 for any sanitised or fattened box and the
-// ray's terms below 2^56, so sums of products stay below 2^120), so no box the segment touches is ever skipped. A ray's
-// far end moves in to origin + translation · f (rounded to nearest) when a
-// closest-hit visitor lowers f; the candidates' fattened boxes reach
-// k_speculative_distance (2^26 raw) beyond the shapes' bounds, far more than
-// that rounding, so a shape hit at or before f always stays a candidate.
+// ray's terms below 2^56, so sums of products stay below 2^120), so no box the
+// segment touches is ever skipped. A ray's far end moves in to origin +
+// translation · f (rounded to nearest) when a closest-hit visitor lowers f;
+// the candidates' fattened boxes reach k_speculative_distance (0.02 m, about
+// 2^26 raw) beyond the shapes' bounds, far more than that rounding or a ray
+// cast's own (a hit point lies on the shape and on the ray to within a few raw
+// units), so a shape hit at or before f always stays a candidate.
 #include <algorithm>
 #include <bit>
 
