@@ -226,6 +226,7 @@ Status check_body_mass_with(const World& w, int32_t body_index, int32_t replace_
 }
 
 void update_body_shape_bounds(World* w, int32_t body_index) {
+  broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
   const Transform xf = sim_at(w, body_index).transform;
   for (int32_t s = body_at(w, body_index).head_shape; s != k_null_index;
        s = w->shapes[static_cast<size_t>(s)].next_shape) {
@@ -600,6 +601,7 @@ Status body_disable(BodyId id) {
   return set_body(id, "body_disable", [&](World* w, int32_t i) {
     if (body_at(w, i).enabled) wake_body_and_touching(w, i, true);
     body_at(w, i).enabled = false;
+    broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
     sim_at(w, i).force = {};
     sim_at(w, i).torque = Q32::zero();
     return Status{};

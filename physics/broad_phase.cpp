@@ -76,21 +76,24 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
   return bp.custom_filter(make_shape_id(*world, lower), make_shape_id(*world, higher), bp.custom_context);
 }
 
-/// Shapes per block of the parallel per-shape part of gather_proxies.
+}  // namespace
+
+/// Shapes per block of the parallel per-shape part of broad_phase_gather_proxies.
 constexpr int32_t k_proxy_block = 256;
 
-/// Lists the proxies and fills the by-shape arrays. The per-shape part (kind,
-/// sanitised fat box, filter copy: each shape writes only its own slots) runs
-/// in fixed blocks of k_proxy_block shapes on any thread (task.h); the list
-/// is then built serially in ascending shape index from the kinds, so it is
-/// the same for every worker count.
-void gather_proxies(World* world) {
+/// Lists the proxies and the sensors and fills the by-shape arrays. The
+/// per-shape part (kind, sanitised fat box, filter copy: each shape writes
+/// only its own slots) runs in fixed blocks of k_proxy_block shapes on any
+/// thread (task.h); the lists are then built serially in ascending shape
+/// index from the kinds, so they are the same for every worker count.
+void broad_phase_gather_proxies(World* world, bool in_step) {
   BroadPhase& bp = world->broad_phase;
   const int32_t capacity = id_pool_capacity(world->shape_pool);
   const size_t cap = static_cast<size_t>(capacity);
   bp.proxies.clear();
   bp.fat_bounds.clear();
   bp.proxy_dynamic.clear();
+  bp.sensors.clear();
   if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
   if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
   if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
@@ -100,7 +103,7 @@ void gather_proxies(World* world) {
   uint8_t* kinds = bp.shape_kind.data();
   AABB* fats = bp.shape_fat.data();
   ProxyFilter* filters = bp.shape_filter.data();
-  parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, [=](int32_t begin, int32_t end) {
+  const auto per_shape = [=](int32_t begin, int32_t end) {
     for (int32_t s = begin; s < end; ++s) {
       const size_t si = static_cast<size_t>(s);
       kinds[si] = k_proxy_none;
@@ -114,16 +117,30 @@ void gather_proxies(World* world) {
       filters[si] =
           ProxyFilter{shape.body_index, shape.filter.group_index, shape.filter.category_bits, shape.filter.mask_bits};
     }
-  });
+  };
+  if (in_step) {
+    parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, per_shape);
+  } else {
+    per_shape(0, capacity);
+  }
   for (int32_t s = 0; s < capacity; ++s) {
     const size_t si = static_cast<size_t>(s);
     const uint8_t kind = kinds[si];
-    if (kind == k_proxy_none) continue;
+    if (kind == k_proxy_none) {
+      // Sensors of enabled bodies are not proxies; queries scan their list.
+      if (id_pool_is_alive(world->shape_pool, s)) {
+        const Shape& shape = world->shapes[si];
+        if (shape.is_sensor && world->bodies[static_cast<size_t>(shape.body_index)].enabled) bp.sensors.push_back(s);
+      }
+      continue;
+    }
     bp.proxies.push_back(s);
     bp.fat_bounds.push_back(fats[si]);
     bp.proxy_dynamic.push_back(kind == k_proxy_dynamic ? 1 : 0);
   }
 }
+
+namespace {
 
 void naive_update(World* world) {
   BroadPhase& bp = world->broad_phase;
@@ -201,6 +218,17 @@ AABB broad_phase_sanitize_box(AABB box) {
   return AABB{{x0 < x1 ? x0 : x1, y0 < y1 ? y0 : y1}, {x0 < x1 ? x1 : x0, y0 < y1 ? y1 : y0}};
 }
 
+uint64_t broad_phase_typical_limit(const int32_t* histogram, int32_t count) {
+  const int32_t wanted = count - count / 16;
+  int32_t bucket = 0;
+  for (int32_t seen = 0; bucket < 65; ++bucket) {
+    seen += histogram[bucket];
+    if (seen >= wanted) break;
+  }
+  // Every extent in classes ≤ bucket is < 2^bucket; allow 4× that.
+  return bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+}
+
 void broad_phase_emit_candidate(World* world, int32_t a, int32_t b) {
   BroadPhase& bp = world->broad_phase;
   const size_t ai = static_cast<size_t>(a);
@@ -226,7 +254,7 @@ void broad_phase_update_pairs(World* world) {
   bp.unsorted.clear();
   bp.stats = BroadPhaseStats{};
   bp.candidate_count = 0;
-  gather_proxies(world);
+  broad_phase_gather_proxies(world, true);
   switch (world->def.broad_phase) {
     case BroadPhaseKind::sweep_and_prune:
       sap_update(world);
@@ -252,6 +280,8 @@ void broad_phase_update_pairs(World* world) {
   const auto elapsed = std::chrono::steady_clock::now() - start;
   const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
   bp.stats.update_nanoseconds = ns > 0 ? static_cast<uint64_t>(ns) : 0;
+  // The rest of the step moves bodies: queries after it re-synchronise.
+  bp.query_synced = false;
 }
 
 void broad_phase_reset(World* world) {
@@ -261,6 +291,8 @@ void broad_phase_reset(World* world) {
   bp.fat_bounds.clear();
   bp.proxy_dynamic.clear();
   bp.unsorted.clear();
+  bp.sensors.clear();
+  bp.query_synced = false;
   sap_reset(&bp.sap);
   tree_reset(&bp.tree);
 }
@@ -293,6 +325,8 @@ void broad_phase_reserve_headroom(World* world) {
   reserve_for(&bp.tree.nodes, 2 * shapes);
   reserve_for(&bp.tree.leaf_of_shape, shapes);
   reserve_for(&bp.tree.stack, 256);
+  reserve_for(&bp.sensors, shapes);
+  reserve_for(&bp.sap.wide, bp.sap.wide.size());
 }
 
 // ---------------------------------------------------------------------------

@@ -87,6 +87,11 @@ struct SweepAndPrune {
   std::vector<int32_t> active_dynamic; ///< sweep scratch: open intervals of dynamic shapes
   std::vector<int32_t> active_other;   ///< sweep scratch: open intervals of the others
   std::vector<int32_t> active_slot;    ///< by shape index: position in its active list
+  // Queries (broad_phase_query.cpp), set by the last sync: proxies wider on x
+  // than query_width are listed in `wide` (ascending shape index) and found by
+  // a scan; the others by a binary search of `endpoints` from x − query_width.
+  std::vector<int32_t> wide;
+  int64_t query_width = 0;             ///< raw Q32, ≥ 0
 };
 
 /// One grid entry (broad_phase_grid.cpp), stored in bucket order so a cell's
@@ -105,8 +110,12 @@ struct Grid {
   std::vector<uint32_t> bucket_start;   ///< table size + 1 offsets into entries
   std::vector<GridEntry> entries;       ///< grid proxies in bucket order
   std::vector<int32_t> outliers;        ///< proxy positions of outliers, ascending
-  int64_t cell_size = 0;                ///< raw Q32 (last update; for tests)
+  int64_t cell_size = 0;                ///< raw Q32 (last update; for tests); 0 while no grid was built
   uint32_t bucket_bits = 0;             ///< table size = 1 << bucket_bits
+  // The occupied cell range and layout, kept for queries.
+  int64_t min_cx = 0, min_cy = 0, max_cx = -1, max_cy = -1;
+  uint64_t width = 1;                   ///< cells per row in the dense layout
+  bool dense = true;
 };
 
 /// A dynamic-tree node (broad_phase_tree.cpp). A leaf has child1 = −1.
@@ -155,6 +164,10 @@ struct BroadPhase {
   int64_t candidate_count = 0;    ///< the update's exact tests so far (clamped into stats)
   CustomFilterFn custom_filter = nullptr;
   void* custom_context = nullptr;
+  // Queries (broad_phase_query.cpp).
+  std::vector<int32_t> sensors;   ///< live sensor shapes on enabled bodies at the last sync, ascending index
+  bool query_synced = false;      ///< the structure and by-shape arrays hold the shapes' current bounds
+  bool query_brute_force = false; ///< tests: queries visit every shape (the reference path)
 };
 
 /// True when two shapes may form a contact by their filters alone (Box2D's
@@ -195,7 +208,93 @@ inline constexpr int64_t k_broad_phase_coordinate_limit = int64_t{1} << 60;
 /// all four still report the same pairs.
 AABB broad_phase_sanitize_box(AABB box);
 
+// ---------------------------------------------------------------------------
+// Queries (broad_phase_query.cpp)
+// ---------------------------------------------------------------------------
+//
+// Between steps the world queries (query.cpp) ask the current structure for
+// candidates instead of visiting every shape. The structure is brought up to
+// date first (broad_phase_sync_for_query): the step's update synchronised it
+// with the poses at the START of the step, and teleports, creations,
+// destructions and enable/disable since then change bounds too, so every
+// such change (and every update) marks it stale and the next query re-runs
+// the update's synchronisation part — gather the proxies, then sweep-and-
+// prune's end-point refresh and merge, the grid's build or the tree's
+// re-inserts — without looking for pairs. What that sync does is what the next
+// step's update would do with the same bounds, so a query costs the step
+// nothing extra; the pair list (and so every simulated bit) does not depend on
+// it either way (the contract above).
+//
+// A candidate is a shape whose fattened box (structure boxes are larger
+// still) meets the query box or the ray segment; every shape the exact tests
+// would accept is a candidate, each is offered exactly once, in an order that
+// is a function of the structure (callers sort or take a unique minimum, so
+// results never depend on it). Sensors are not proxies: with include_sensors
+// the live sensors on enabled bodies are offered too (a scan of that list).
+
+/// Called once per candidate shape index. Returns the largest ray fraction
+/// still of interest (a closest-hit query returns its best fraction so far, so
+/// farther boxes are skipped; an all-hits query returns 1); box queries ignore
+/// the value.
+using BroadPhaseVisit = Q32 (*)(void* context, int32_t shape);
+
+/// Marks the query structure stale: bounds, the live set or a body's enabled
+/// flag changed outside the broad phase's knowledge (teleport, create, destroy,
+/// enable, disable). Cheap; the next query re-synchronises.
+void broad_phase_mark_stale(World* world);
+
+/// Brings the current kind's structure up to date with the shapes (a no-op when
+/// nothing changed since the last sync). Outside a step only.
+void broad_phase_sync_for_query(World* world);
+
+/// Offers every shape whose fattened box overlaps `box` (closed), then, with
+/// include_sensors, every sensor whose bounds overlap it. Syncs first.
+void broad_phase_query_box(World* world, AABB box, bool include_sensors, BroadPhaseVisit visit, void* context);
+
+/// Offers every shape whose fattened box meets the segment origin → origin +
+/// translation · f, where f starts at 1 and is lowered to each visit's return
+/// value; then the sensors likewise (include_sensors). Syncs first.
+void broad_phase_query_ray(World* world, Vec2 origin, Vec2 translation, bool include_sensors, BroadPhaseVisit visit,
+                           void* context);
+
+/// Whether the closed segment p → q meets the closed box b; exact (128-bit
+/// separating-axis test), so it never rejects a box the segment touches.
+bool segment_overlaps_box(Vec2 p, Vec2 q, const AABB& b);
+
+/// One query as the structures see it: a box, or a ray whose far end moves in
+/// as the visitor lowers its fraction (then `box` bounds the current segment).
+struct BroadPhaseQuery {
+  AABB box;                  ///< query box, or bounds of origin → end
+  bool is_ray = false;
+  Vec2 origin;               ///< ray start, m
+  Vec2 translation;          ///< full ray, m
+  Vec2 end;                  ///< origin + translation · max_fraction (rounded to nearest), m
+  Q32 max_fraction;          ///< in [0, 1]
+  BroadPhaseVisit visit = nullptr;
+  void* context = nullptr;
+
+  /// Whether a structure box `b` may hold a candidate: it meets the box, and
+  /// for a ray the current segment.
+  bool accepts(const AABB& b) const {
+    return aabb_overlaps(box, b) && (!is_ray || segment_overlaps_box(origin, end, b));
+  }
+  /// Offers a candidate shape; a ray takes the visitor's fraction when lower.
+  void offer(int32_t shape);
+};
+
+// The structures' queries: each offers every proxy whose fattened box
+// q->accepts(), exactly once (broad_phase_query.cpp has naive's).
+void sap_query(World* world, BroadPhaseQuery* q);
+void grid_query(World* world, BroadPhaseQuery* q);
+void tree_query(World* world, BroadPhaseQuery* q);
+
 // Shared by the implementations (broad_phase.cpp).
+
+/// The outlier rule of the grid (and of sweep-and-prune's queries): given a
+/// histogram of extents by power-of-two class (histogram[std::bit_width(e)],
+/// 65 entries) over `count` proxies, 4× the class bound that holds 15/16 of
+/// them; extents above it are outsized.
+uint64_t broad_phase_typical_limit(const int32_t* histogram, int32_t count);
 
 /// The candidate (a, b), a ≠ b, in either order: unless both are non-dynamic,
 /// counts it, applies the exact fattened-box test and the filters, and
@@ -210,11 +309,21 @@ void broad_phase_emit_overlapping(World* world, int32_t a, int32_t b);
 
 // The structures (one file each). Each fills bp.unsorted from the proxies
 // listed by the pre-pass (bp.proxies, bp.shape_fat, bp.shape_kind).
+// *_sync brings the structure up to date with the pre-pass (queries use it
+// alone); *_update is sync followed by the pair search.
+void sap_sync(World* world);
 void sap_update(World* world);
 void sap_reset(SweepAndPrune* sap);
+void grid_sync(World* world);
 void grid_update(World* world);
+void tree_sync(World* world);
 void tree_update(World* world);
 void tree_reset(DynamicTree* tree);
+/// Lists the proxies and fills the by-shape arrays (and the sensor list); the
+/// first part of every update and sync. `in_step`: inside world_step, where the
+/// per-shape part may run on the world's workers; false (queries between
+/// steps) runs it on the calling thread and never calls a user task callback.
+void broad_phase_gather_proxies(World* world, bool in_step);
 /// Checks the tree's structure (parents, heights, boxes containing children);
 /// for tests. Returns the number of leaves, or −1 when broken.
 int32_t tree_validate(const DynamicTree& tree);

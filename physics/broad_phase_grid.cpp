@@ -91,18 +91,74 @@ inline void test_entries(World* world, const GridEntry& a, const GridEntry& b, i
   if (aabb_overlaps(a.box, b.box)) broad_phase_emit_overlapping(world, a.shape, b.shape);
 }
 
-}  // namespace
+/// Calls f(entry) for every grid entry that may overlap `box`: a grid proxy
+/// overlapping it has lower + upper within [2·box.lower − S, 2·box.upper + S]
+/// on each axis, so the cells of that range (clamped to the occupied range)
+/// are read — row by row in the dense layout; cell by cell through the hash
+/// when there are fewer cells than entries, else every entry.
+template <typename F>
+void for_each_entry_near(const Grid& g, const AABB& box, F&& f) {
+  const size_t grid_count = g.entries.size();
+  if (grid_count == 0) return;
+  const int64_t cell = g.cell_size;
+  const int64_t span = 2 * cell;
+  const int64_t lx = clamp_coordinate(box.lower.x.raw), ux = clamp_coordinate(box.upper.x.raw);
+  const int64_t ly = clamp_coordinate(box.lower.y.raw), uy = clamp_coordinate(box.upper.y.raw);
+  int64_t x0 = floor_div(2 * lx - cell, span), x1 = floor_div(2 * ux + cell, span);
+  int64_t y0 = floor_div(2 * ly - cell, span), y1 = floor_div(2 * uy + cell, span);
+  x0 = x0 < g.min_cx ? g.min_cx : x0;
+  x1 = x1 > g.max_cx ? g.max_cx : x1;
+  y0 = y0 < g.min_cy ? g.min_cy : y0;
+  y1 = y1 > g.max_cy ? g.max_cy : y1;
+  if (x0 > x1 || y0 > y1) return;
+  const GridEntry* entries = g.entries.data();
+  const uint32_t* starts = g.bucket_start.data();
+  const uint64_t cells = static_cast<uint64_t>(x1 - x0 + 1) * static_cast<uint64_t>(y1 - y0 + 1);
+  if (g.dense) {
+    const size_t w = static_cast<size_t>(g.width);
+    for (int64_t cy = y0; cy <= y1; ++cy) {
+      const size_t row = static_cast<size_t>(cy - g.min_cy) * w;
+      const uint32_t begin = starts[row + static_cast<size_t>(x0 - g.min_cx)];
+      const uint32_t end = starts[row + static_cast<size_t>(x1 - g.min_cx) + 1];
+      for (uint32_t ej = begin; ej < end; ++ej) f(entries[ej]);
+    }
+  } else if (cells <= static_cast<uint64_t>(grid_count)) {
+    for (int64_t cx = x0; cx <= x1; ++cx) {
+      for (int64_t cy = y0; cy <= y1; ++cy) {
+        const uint64_t key = pack_cell(cx, cy);
+        const uint32_t nb = cell_bucket(key, g.bucket_bits);
+        const uint32_t nend = starts[nb + 1];
+        for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
+          if (entries[ej].cell == key) f(entries[ej]);
+        }
+      }
+    }
+  } else {
+    for (size_t ej = 0; ej < grid_count; ++ej) f(entries[ej]);
+  }
+}
 
-void grid_update(World* world) {
+/// Builds the grid from the pre-pass's proxies (cells, buckets, entries,
+/// outliers). Returns false when no pair can exist (fewer than two proxies or
+/// none dynamic): the pair search is then skipped. The grid is built anyway
+/// for queries, its cell size then taken from every proxy.
+bool grid_build(World* world) {
   BroadPhase& bp = world->broad_phase;
   Grid& g = bp.grid;
   const size_t n = bp.proxies.size();
   g.cell_size = 0;
   g.outliers.clear();
   g.entries.clear();
-  if (n < 2) return;
+  g.min_cx = 0;
+  g.min_cy = 0;
+  g.max_cx = -1;
+  g.max_cy = -1;
+  g.width = 1;
+  g.dense = true;
+  if (n == 0) return false;
 
-  // Cell size from the dynamic proxies' extents, ignoring outsized ones.
+  // Cell size from the dynamic proxies' extents, ignoring outsized ones (from
+  // every proxy when none is dynamic: only queries will read the grid).
   int32_t histogram[65] = {};
   int32_t dynamic_count = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -110,18 +166,17 @@ void grid_update(World* world) {
     ++histogram[std::bit_width(box_extent(bp.fat_bounds[i]))];
     ++dynamic_count;
   }
-  if (dynamic_count == 0) return;  // no pair can have a dynamic shape
-  const int32_t wanted = dynamic_count - dynamic_count / 16;
-  int32_t bucket = 0;
-  for (int32_t seen = 0; bucket < 65; ++bucket) {
-    seen += histogram[bucket];
-    if (seen >= wanted) break;
+  const bool pairs_possible = n >= 2 && dynamic_count > 0;
+  const uint8_t sizing_flag = dynamic_count > 0 ? 1 : 0;  // proxies with proxy_dynamic ≥ this set the size
+  int32_t sizing_count = dynamic_count;
+  if (dynamic_count == 0) {
+    for (size_t i = 0; i < n; ++i) ++histogram[std::bit_width(box_extent(bp.fat_bounds[i]))];
+    sizing_count = static_cast<int32_t>(n);
   }
-  // Every extent in classes ≤ bucket is < 2^bucket; allow 4× that.
-  const uint64_t typical_limit = bucket + 2 >= 64 ? UINT64_MAX : (uint64_t{1} << (bucket + 2));
+  const uint64_t typical_limit = broad_phase_typical_limit(histogram, sizing_count);
   uint64_t size = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (bp.proxy_dynamic[i] == 0) continue;
+    if (bp.proxy_dynamic[i] < sizing_flag) continue;
     const uint64_t e = box_extent(bp.fat_bounds[i]);
     if (e <= typical_limit && e > size) size = e;
   }
@@ -194,6 +249,30 @@ void grid_update(World* world) {
   }
   for (size_t b = table; b > 0; --b) g.bucket_start[b] = g.bucket_start[b - 1];
   g.bucket_start[0] = 0;
+  if (grid_count > 0) {
+    g.min_cx = min_cx;
+    g.min_cy = min_cy;
+    g.max_cx = max_cx;
+    g.max_cy = max_cy;
+  }
+  g.width = width;
+  g.dense = dense;
+  return pairs_possible;
+}
+
+}  // namespace
+
+void grid_sync(World* world) { (void)grid_build(world); }
+
+void grid_update(World* world) {
+  if (!grid_build(world)) return;  // no pair can have a dynamic shape
+  BroadPhase& bp = world->broad_phase;
+  Grid& g = bp.grid;
+  const uint64_t width = g.width;
+  const uint64_t height = g.entries.empty() ? 1 : static_cast<uint64_t>(g.max_cy - g.min_cy) + 1;
+  const bool dense = g.dense;
+  const uint32_t bits = g.bucket_bits;
+  const size_t table = g.bucket_start.size() - 1;
 
   const GridEntry* entries = g.entries.data();
   const uint32_t* starts = g.bucket_start.data();
@@ -256,42 +335,7 @@ void grid_update(World* world) {
   for (size_t k = 0; k < outlier_count; ++k) {
     const size_t i = static_cast<size_t>(g.outliers[k]);
     const GridEntry o{bp.fat_bounds[i], k_outlier_cell, bp.proxies[i], bp.proxy_dynamic[i]};
-    if (grid_count > 0) {
-      // A grid proxy overlapping o has lower + upper within [2·o.lower − S, 2·o.upper + S].
-      const int64_t lx = clamp_coordinate(o.box.lower.x.raw), ux = clamp_coordinate(o.box.upper.x.raw);
-      const int64_t ly = clamp_coordinate(o.box.lower.y.raw), uy = clamp_coordinate(o.box.upper.y.raw);
-      int64_t x0 = floor_div(2 * lx - cell, span), x1 = floor_div(2 * ux + cell, span);
-      int64_t y0 = floor_div(2 * ly - cell, span), y1 = floor_div(2 * uy + cell, span);
-      x0 = x0 < min_cx ? min_cx : x0;
-      x1 = x1 > max_cx ? max_cx : x1;
-      y0 = y0 < min_cy ? min_cy : y0;
-      y1 = y1 > max_cy ? max_cy : y1;
-      if (x0 <= x1 && y0 <= y1) {
-        const uint64_t cells = static_cast<uint64_t>(x1 - x0 + 1) * static_cast<uint64_t>(y1 - y0 + 1);
-        if (dense) {
-          const size_t w = static_cast<size_t>(width);
-          for (int64_t cy = y0; cy <= y1; ++cy) {
-            const size_t row = static_cast<size_t>(cy - min_cy) * w;
-            const uint32_t begin = starts[row + static_cast<size_t>(x0 - min_cx)];
-            const uint32_t end = starts[row + static_cast<size_t>(x1 - min_cx) + 1];
-            for (uint32_t ej = begin; ej < end; ++ej) test_entries(world, o, entries[ej], &candidates);
-          }
-        } else if (cells <= static_cast<uint64_t>(grid_count)) {
-          for (int64_t cx = x0; cx <= x1; ++cx) {
-            for (int64_t cy = y0; cy <= y1; ++cy) {
-              const uint64_t key = pack_cell(cx, cy);
-              const uint32_t nb = cell_bucket(key, bits);
-              const uint32_t nend = starts[nb + 1];
-              for (uint32_t ej = starts[nb]; ej < nend; ++ej) {
-                if (entries[ej].cell == key) test_entries(world, o, entries[ej], &candidates);
-              }
-            }
-          }
-        } else {
-          for (size_t ej = 0; ej < grid_count; ++ej) test_entries(world, o, entries[ej], &candidates);
-        }
-      }
-    }
+    for_each_entry_near(g, o.box, [&](const GridEntry& e) { test_entries(world, o, e, &candidates); });
     for (size_t k2 = k + 1; k2 < outlier_count; ++k2) {
       const size_t j = static_cast<size_t>(g.outliers[k2]);
       const GridEntry p{bp.fat_bounds[j], k_outlier_cell, bp.proxies[j], bp.proxy_dynamic[j]};
@@ -299,6 +343,49 @@ void grid_update(World* world) {
     }
   }
   bp.candidate_count += candidates;
+}
+
+void grid_query(World* world, BroadPhaseQuery* q) {
+  const BroadPhase& bp = world->broad_phase;
+  const Grid& g = bp.grid;
+  const auto test = [&](const GridEntry& e) {
+    if (q->accepts(e.box)) q->offer(e.shape);
+  };
+  if (g.dense && !g.entries.empty()) {
+    // Rows in the ray's vertical direction, each row's cell range from the
+    // query's current box: once a closest-hit visitor has pulled the ray's
+    // end in, the rows beyond it are not read.
+    const int64_t cell = g.cell_size;
+    const int64_t span = 2 * cell;
+    const bool down = q->is_ray && q->translation.y < Q32::zero();
+    const size_t w = static_cast<size_t>(g.width);
+    const uint32_t* starts = g.bucket_start.data();
+    for (int64_t k = 0; k <= g.max_cy - g.min_cy; ++k) {
+      const int64_t cy = down ? g.max_cy - k : g.min_cy + k;
+      const AABB& b = q->box;
+      if (cy < floor_div(2 * clamp_coordinate(b.lower.y.raw) - cell, span)) {
+        if (down) break;
+        continue;
+      }
+      if (cy > floor_div(2 * clamp_coordinate(b.upper.y.raw) + cell, span)) {
+        if (down) continue;
+        break;
+      }
+      int64_t x0 = floor_div(2 * clamp_coordinate(b.lower.x.raw) - cell, span);
+      int64_t x1 = floor_div(2 * clamp_coordinate(b.upper.x.raw) + cell, span);
+      x0 = x0 < g.min_cx ? g.min_cx : x0;
+      x1 = x1 > g.max_cx ? g.max_cx : x1;
+      if (x0 > x1) continue;
+      const size_t row = static_cast<size_t>(cy - g.min_cy) * w;
+      const uint32_t end = starts[row + static_cast<size_t>(x1 - g.min_cx) + 1];
+      for (uint32_t ej = starts[row + static_cast<size_t>(x0 - g.min_cx)]; ej < end; ++ej) test(g.entries[ej]);
+    }
+  } else {
+    for_each_entry_near(g, q->box, test);
+  }
+  for (const int32_t i : g.outliers) {
+    if (q->accepts(bp.fat_bounds[static_cast<size_t>(i)])) q->offer(bp.proxies[static_cast<size_t>(i)]);
+  }
 }
 
 }  // namespace tandem

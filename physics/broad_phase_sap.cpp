@@ -72,7 +72,7 @@ void sap_reset(SweepAndPrune* sap) {
   sap->merged.clear();
 }
 
-void sap_update(World* world) {
+void sap_sync(World* world) {
   BroadPhase& bp = world->broad_phase;
   SweepAndPrune& sap = bp.sap;
   const size_t cap = static_cast<size_t>(id_pool_capacity(world->shape_pool));
@@ -117,6 +117,12 @@ void sap_update(World* world) {
                endpoint_less);
     std::swap(sap.endpoints, sap.merged);
   }
+}
+
+void sap_update(World* world) {
+  sap_sync(world);
+  BroadPhase& bp = world->broad_phase;
+  SweepAndPrune& sap = bp.sap;
 
   // 4. Sweep.
   sap.active_dynamic.clear();

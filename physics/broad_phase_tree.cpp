@@ -255,7 +255,7 @@ void tree_reset(DynamicTree* tree) {
   tree->leaf_of_shape.clear();
 }
 
-void tree_update(World* world) {
+void tree_sync(World* world) {
   BroadPhase& bp = world->broad_phase;
   DynamicTree& t = bp.tree;
   const int32_t cap = id_pool_capacity(world->shape_pool);
@@ -284,6 +284,12 @@ void tree_update(World* world) {
     insert_leaf(&t, leaf);
     t.leaf_of_shape[si] = leaf;
   }
+}
+
+void tree_update(World* world) {
+  tree_sync(world);
+  BroadPhase& bp = world->broad_phase;
+  DynamicTree& t = bp.tree;
 
   // All overlapping leaf pairs in one traversal of the tree against itself:
   // a node's pairs are those inside each child plus those across the two
@@ -342,6 +348,42 @@ void tree_update(World* world) {
     }
   }
   bp.candidate_count += candidates;
+}
+
+void tree_query(World* world, BroadPhaseQuery* q) {
+  BroadPhase& bp = world->broad_phase;
+  DynamicTree& t = bp.tree;
+  if (t.root == -1) return;
+  // Depth first. A box query takes child1 first; a ray takes first the child
+  // whose box centre comes first along the ray's dominant axis (child1 on a
+  // tie), so a closest-hit query usually meets its hit early and pulls the
+  // ray in. Either order is a function of the tree and the query alone.
+  const auto magnitude = [](int64_t v) { return v < 0 ? uint64_t{0} - static_cast<uint64_t>(v) : static_cast<uint64_t>(v); };
+  const bool along_x = magnitude(q->translation.x.raw) >= magnitude(q->translation.y.raw);
+  const int64_t dir = along_x ? q->translation.x.raw : q->translation.y.raw;
+  // Doubled centre on that axis (< 2^62 for any tree box), negated for a ray
+  // going the negative way: smaller comes first.
+  const auto key = [&](const AABB& b) {
+    const int64_t c2 = along_x ? b.lower.x.raw + b.upper.x.raw : b.lower.y.raw + b.upper.y.raw;
+    return dir < 0 ? -c2 : c2;
+  };
+  std::vector<int32_t>& stack = t.stack;
+  stack.clear();
+  stack.push_back(t.root);
+  while (!stack.empty()) {
+    const int32_t i = stack.back();
+    stack.pop_back();
+    const TreeNode& n = t.nodes[static_cast<size_t>(i)];
+    if (!q->accepts(n.box)) continue;
+    if (n.child1 != -1) {
+      const bool swap = q->is_ray && key(t.nodes[static_cast<size_t>(n.child2)].box) <
+                                         key(t.nodes[static_cast<size_t>(n.child1)].box);
+      stack.push_back(swap ? n.child1 : n.child2);
+      stack.push_back(swap ? n.child2 : n.child1);
+      continue;
+    }
+    if (q->accepts(bp.shape_fat[static_cast<size_t>(n.shape)])) q->offer(n.shape);
+  }
 }
 
 int32_t tree_validate(const DynamicTree& tree) {

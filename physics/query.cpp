@@ -1,9 +1,18 @@
 // query.cpp — world queries (see query.h for the contract).
 //
 // Every query resolves the world (refusing a locked one), checks its
-// arguments, then visits live shapes in ascending index: the candidate test
-// is the shape's AABB, then the exact test. Ray hits are collected and, for
-// the all-hits query, sorted on the unique key (fraction, shape index).
+// arguments, then asks the world's current broad phase for candidates
+// (broad_phase_query_box / _ray, which first re-sync it with the shapes'
+// current bounds; broad_phase.h "Queries"). Each candidate goes through the
+// same tests the reference path applies to every shape: visible to the
+// filter, its AABB against the query's box (the ray's bounds), then the exact
+// test. Results never depend on the visiting order: overlaps are sorted by
+// shape index, all ray hits by the unique key (fraction, shape index), and the
+// closest hit is the minimum of that key (so farther boxes can be skipped).
+//
+// The reference path — every shape slot in ascending index, the queries as
+// they were before the broad phase took part — stays behind
+// BroadPhase::query_brute_force for tests that compare the two.
 #include "physics/query.h"
 
 #include <algorithm>
@@ -86,25 +95,136 @@ Status check_ray(const char* function, Vec2 origin, Vec2 translation) {
   return Status{};
 }
 
-/// Collects every hit (unsorted, shape index order) into *hits.
-void collect_ray_hits(const World& w, Vec2 origin, Vec2 translation, const QueryFilter& filter,
-                      std::vector<RayHit>* hits) {
-  const Vec2 end = origin + translation;
-  const AABB ray_box{min(origin, end), max(origin, end)};
-  const int32_t n = id_pool_capacity(w.shape_pool);
-  for (int32_t i = 0; i < n; ++i) {
-    if (!shape_visible(w, i, filter)) continue;
-    if (!aabb_overlaps(ray_box, w.shapes[static_cast<size_t>(i)].aabb)) continue;
-    const CastOutput out = cast_shape(w, i, origin, translation);
-    if (!out.hit) continue;
-    RayHit hit;
-    hit.shape = make_shape_id(w, i);
-    hit.point = out.point;
-    hit.normal = out.normal;
-    hit.fraction = out.fraction;
-    hit.hit = true;
-    hits->push_back(hit);
+/// What a candidate visitor needs (one record for every query kind).
+struct Visit {
+  World* world = nullptr;
+  QueryFilter filter;
+  AABB box;                        ///< the query box, or the whole ray's bounds
+  Vec2 origin;                     ///< ray, m
+  Vec2 translation;                ///< ray, m
+  const ShapeProxy* proxy = nullptr;  ///< shape overlap
+  Transform transform;             ///< shape overlap
+  std::vector<RayHit>* hits = nullptr;
+  std::vector<ShapeId>* shapes = nullptr;
+  RayHit best;                     ///< closest hit so far
+  int32_t best_index = -1;         ///< its shape index
+};
+
+/// Casts the ray at shape i when it is visible and its bounds meet the ray's;
+/// false when it misses.
+bool cast_candidate(const Visit& v, int32_t i, CastOutput* out) {
+  if (!shape_visible(*v.world, i, v.filter)) return false;
+  if (!aabb_overlaps(v.box, v.world->shapes[static_cast<size_t>(i)].aabb)) return false;
+  *out = cast_shape(*v.world, i, v.origin, v.translation);
+  return out->hit;
+}
+
+RayHit make_hit(const World& w, int32_t i, const CastOutput& out) {
+  RayHit hit;
+  hit.shape = make_shape_id(w, i);
+  hit.point = out.point;
+  hit.normal = out.normal;
+  hit.fraction = out.fraction;
+  hit.hit = true;
+  return hit;
+}
+
+/// Closest hit: keeps the lowest (fraction, shape index), a unique key, so the
+/// visiting order cannot matter; farther candidates need not be offered.
+Q32 visit_closest(void* context, int32_t i) {
+  Visit& v = *static_cast<Visit*>(context);
+  CastOutput out;
+  if (cast_candidate(v, i, &out)) {
+    const bool better = v.best_index == -1 || out.fraction < v.best.fraction ||
+                        (out.fraction == v.best.fraction && i < v.best_index);
+    if (better) {
+      v.best = make_hit(*v.world, i, out);
+      v.best_index = i;
+    }
   }
+  return v.best_index == -1 ? Q32::one() : v.best.fraction;
+}
+
+/// All hits, unsorted.
+Q32 visit_all_hits(void* context, int32_t i) {
+  Visit& v = *static_cast<Visit*>(context);
+  CastOutput out;
+  if (cast_candidate(v, i, &out)) v.hits->push_back(make_hit(*v.world, i, out));
+  return Q32::one();
+}
+
+Q32 visit_box(void* context, int32_t i) {
+  Visit& v = *static_cast<Visit*>(context);
+  if (shape_visible(*v.world, i, v.filter) && aabb_overlaps(v.box, v.world->shapes[static_cast<size_t>(i)].aabb)) {
+    v.shapes->push_back(make_shape_id(*v.world, i));
+  }
+  return Q32::one();
+}
+
+/// The point is v.box.lower (= upper).
+Q32 visit_point(void* context, int32_t i) {
+  Visit& v = *static_cast<Visit*>(context);
+  const World& w = *v.world;
+  const Vec2 point = v.box.lower;
+  if (!shape_visible(w, i, v.filter)) return Q32::one();
+  if (!aabb_contains_point(w.shapes[static_cast<size_t>(i)].aabb, point)) return Q32::one();
+  const Vec2 local = inv_transform_point(shape_transform(w, i), point);
+  const ShapeGeometry& g = w.shape_geometries[static_cast<size_t>(i)];
+  bool inside = false;
+  switch (g.type) {
+    case ShapeType::circle: inside = point_in_circle(local, g.circle); break;
+    case ShapeType::capsule: inside = point_in_capsule(local, g.capsule); break;
+    case ShapeType::polygon: inside = point_in_polygon(local, g.polygon); break;
+    case ShapeType::segment:
+    case ShapeType::chain_segment:
+    case ShapeType::count: inside = false; break;
+  }
+  if (inside) v.shapes->push_back(make_shape_id(w, i));
+  return Q32::one();
+}
+
+Q32 visit_proxy(void* context, int32_t i) {
+  Visit& v = *static_cast<Visit*>(context);
+  const World& w = *v.world;
+  if (!shape_visible(w, i, v.filter)) return Q32::one();
+  if (!aabb_overlaps(v.box, w.shapes[static_cast<size_t>(i)].aabb)) return Q32::one();
+  DistanceInput input;
+  input.proxy_a = make_shape_proxy(w.shape_geometries[static_cast<size_t>(i)]);
+  input.proxy_b = *v.proxy;
+  input.transform_a = shape_transform(w, i);
+  input.transform_b = v.transform;
+  input.use_radii = true;
+  if (shape_distance(input).distance == Q32::zero()) v.shapes->push_back(make_shape_id(w, i));
+  return Q32::one();
+}
+
+/// The reference path (WorldDef-independent): every shape slot, ascending.
+void visit_every_shape(Visit* v, BroadPhaseVisit visit) {
+  const int32_t n = id_pool_capacity(v->world->shape_pool);
+  for (int32_t i = 0; i < n; ++i) (void)visit(v, i);
+}
+
+/// Offers the candidates of box v->box (broad phase, or every shape).
+void visit_box_candidates(Visit* v, BroadPhaseVisit visit) {
+  if (v->world->broad_phase.query_brute_force) {
+    visit_every_shape(v, visit);
+  } else {
+    broad_phase_query_box(v->world, v->box, v->filter.include_sensors, visit, v);
+  }
+}
+
+/// Offers the candidates of the ray v->origin, v->translation.
+void visit_ray_candidates(Visit* v, BroadPhaseVisit visit) {
+  if (v->world->broad_phase.query_brute_force) {
+    visit_every_shape(v, visit);
+  } else {
+    broad_phase_query_ray(v->world, v->origin, v->translation, v->filter.include_sensors, visit, v);
+  }
+}
+
+/// Shape ids in ascending index (unique key), whatever the visiting order.
+void sort_shape_ids(std::vector<ShapeId>* ids) {
+  std::sort(ids->begin(), ids->end(), [](const ShapeId& a, const ShapeId& b) { return a.index1 < b.index1; });
 }
 
 /// Shapes overlapping a proxy at a transform (bounds `box`), ascending index.
@@ -114,18 +234,15 @@ Status overlap_proxy(WorldId id, const char* function, const ShapeProxy& proxy, 
   World* w = nullptr;
   Status s = resolve_world(id, function, true, &w);
   if (!s.ok()) return s;
-  const int32_t n = id_pool_capacity(w->shape_pool);
-  for (int32_t i = 0; i < n; ++i) {
-    if (!shape_visible(*w, i, filter)) continue;
-    if (!aabb_overlaps(box, w->shapes[static_cast<size_t>(i)].aabb)) continue;
-    DistanceInput input;
-    input.proxy_a = make_shape_proxy(w->shape_geometries[static_cast<size_t>(i)]);
-    input.proxy_b = proxy;
-    input.transform_a = shape_transform(*w, i);
-    input.transform_b = transform;
-    input.use_radii = true;
-    if (shape_distance(input).distance == Q32::zero()) out->push_back(make_shape_id(*w, i));
-  }
+  Visit v;
+  v.world = w;
+  v.filter = filter;
+  v.box = box;
+  v.proxy = &proxy;
+  v.transform = transform;
+  v.shapes = out;
+  visit_box_candidates(&v, visit_proxy);
+  sort_shape_ids(out);
   return s;
 }
 
@@ -135,6 +252,18 @@ Status check_transform(const char* function, Transform transform) {
                                       to_string(k_max_world_coordinate) + " m");
   }
   return Status{};
+}
+
+/// A ray's Visit record.
+Visit ray_visit(World* w, Vec2 origin, Vec2 translation, const QueryFilter& filter) {
+  Visit v;
+  v.world = w;
+  v.filter = filter;
+  v.origin = origin;
+  v.translation = translation;
+  const Vec2 end = origin + translation;
+  v.box = AABB{min(origin, end), max(origin, end)};
+  return v;
 }
 
 }  // namespace
@@ -147,21 +276,9 @@ Result<RayHit> world_cast_ray_closest(WorldId id, Vec2 origin, Vec2 translation,
   if (!result.ok()) return result;
   result.status = check_ray(fn, origin, translation);
   if (!result.ok()) return result;
-  const Vec2 end = origin + translation;
-  const AABB ray_box{min(origin, end), max(origin, end)};
-  const int32_t n = id_pool_capacity(w->shape_pool);
-  for (int32_t i = 0; i < n; ++i) {
-    if (!shape_visible(*w, i, filter)) continue;
-    if (!aabb_overlaps(ray_box, w->shapes[static_cast<size_t>(i)].aabb)) continue;
-    const CastOutput out = cast_shape(*w, i, origin, translation);
-    // Strictly closer only: the lowest shape index wins a tie.
-    if (!out.hit || (result.value.hit && !(out.fraction < result.value.fraction))) continue;
-    result.value.shape = make_shape_id(*w, i);
-    result.value.point = out.point;
-    result.value.normal = out.normal;
-    result.value.fraction = out.fraction;
-    result.value.hit = true;
-  }
+  Visit v = ray_visit(w, origin, translation, filter);
+  visit_ray_candidates(&v, visit_closest);
+  if (v.best_index != -1) result.value = v.best;
   return result;
 }
 
@@ -173,7 +290,9 @@ Status world_cast_ray_all(WorldId id, Vec2 origin, Vec2 translation, QueryFilter
   if (!s.ok()) return s;
   s = check_ray(fn, origin, translation);
   if (!s.ok()) return s;
-  collect_ray_hits(*w, origin, translation, filter, out);
+  Visit v = ray_visit(w, origin, translation, filter);
+  v.hits = out;
+  visit_ray_candidates(&v, visit_all_hits);
   std::sort(out->begin(), out->end(), [](const RayHit& a, const RayHit& b) {
     if (a.fraction != b.fraction) return a.fraction < b.fraction;
     return a.shape.index1 < b.shape.index1;  // unique within a world
@@ -193,11 +312,13 @@ Status world_overlap_aabb(WorldId id, AABB box, QueryFilter filter, std::vector<
                                 "] m must have lower ≤ upper and lie within ±" + to_string(k_max_world_coordinate) +
                                 " m");
   }
-  const int32_t n = id_pool_capacity(w->shape_pool);
-  for (int32_t i = 0; i < n; ++i) {
-    if (!shape_visible(*w, i, filter)) continue;
-    if (aabb_overlaps(box, w->shapes[static_cast<size_t>(i)].aabb)) out->push_back(make_shape_id(*w, i));
-  }
+  Visit v;
+  v.world = w;
+  v.filter = filter;
+  v.box = box;
+  v.shapes = out;
+  visit_box_candidates(&v, visit_box);
+  sort_shape_ids(out);
   return s;
 }
 
@@ -211,23 +332,13 @@ Status world_overlap_point(WorldId id, Vec2 point, QueryFilter filter, std::vect
     return bad_argument(fn, "point " + format_vec2(point) + " m is outside ±" + to_string(k_max_world_coordinate) +
                                 " m");
   }
-  const int32_t n = id_pool_capacity(w->shape_pool);
-  for (int32_t i = 0; i < n; ++i) {
-    if (!shape_visible(*w, i, filter)) continue;
-    if (!aabb_contains_point(w->shapes[static_cast<size_t>(i)].aabb, point)) continue;
-    const Vec2 local = inv_transform_point(shape_transform(*w, i), point);
-    const ShapeGeometry& g = w->shape_geometries[static_cast<size_t>(i)];
-    bool inside = false;
-    switch (g.type) {
-      case ShapeType::circle: inside = point_in_circle(local, g.circle); break;
-      case ShapeType::capsule: inside = point_in_capsule(local, g.capsule); break;
-      case ShapeType::polygon: inside = point_in_polygon(local, g.polygon); break;
-      case ShapeType::segment:
-      case ShapeType::chain_segment:
-      case ShapeType::count: inside = false; break;
-    }
-    if (inside) out->push_back(make_shape_id(*w, i));
-  }
+  Visit v;
+  v.world = w;
+  v.filter = filter;
+  v.box = AABB{point, point};
+  v.shapes = out;
+  visit_box_candidates(&v, visit_point);
+  sort_shape_ids(out);
   return s;
 }
 

@@ -6,9 +6,12 @@
 // QueryFilter (shape.category & query.mask and query.category & shape.mask
 // both non-zero). Sensor shapes only with QueryFilter::include_sensors.
 // Bounds are the shapes' current AABBs (updated at the end of each step and
-// on teleport). For now every query visits every shape (brute force, in
-// shape index order); the broad-phase task accelerates them without
-// changing any result.
+// on teleport). Candidates come from the world's broad phase (whichever kind
+// is selected), brought up to date with those bounds first; the results are
+// exactly those of visiting every shape (tests compare the two on random
+// worlds). A query may update the broad phase's cached structure, never the
+// simulation state: stepping after a query gives the same bits as without it.
+// Queries on one world are not safe to run concurrently with each other.
 //
 // EXACTNESS. AABB overlap reports shapes whose AABB overlaps the box (edges
 // touching count) — a bounds test, as in Box2D. Point query: the point is

@@ -191,6 +191,7 @@ void link_shape(World* w, Body* body, int32_t index) {
 /// updated here.
 int32_t insert_shape(World* w, int32_t b, const ShapeDef& def, const ShapeGeometry& geometry) {
   const int32_t index = id_pool_allocate(&w->shape_pool);
+  broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
   if (static_cast<size_t>(index) >= w->shapes.size()) {
     w->shapes.resize(static_cast<size_t>(index) + 1);
     w->shape_geometries.resize(static_cast<size_t>(index) + 1);
@@ -346,6 +347,7 @@ void remove_shape(World* w, int32_t index) {
   shape = Shape{};
   w->shape_geometries[static_cast<size_t>(index)] = ShapeGeometry{};
   id_pool_free(&w->shape_pool, index);
+  broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
 }
 
 // ---------------------------------------------------------------------------

@@ -42,6 +42,10 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
   app.add_flag("--profile", o->profile,
                "print Tandem's per-stage profile (median ms/step per stage over all timed steps) as a Markdown "
                "table; the JSON always has it");
+  app.add_option("--rays", o->rays,
+                 "run the ray-cast benchmark instead: this many closest-hit rays per batch, --runs batches, in each "
+                 "engine (default scene rain-4000; Box2D 2.4 with --peers)")
+      ->check(CLI::Range(1, 100000000));
   app.add_option("--csv", o->csv, "write the results as CSV to this file");
   app.add_option("--json", o->json, "write the results as JSON to this file");
   app.add_option("--svg", o->svg, "write a plot of circles-N step time against N to this SVG file");

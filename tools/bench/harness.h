@@ -22,9 +22,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "fixed/vec2.h"
 #include "profile_stats.h"
 #include "scenes.h"
 
@@ -55,6 +57,36 @@ struct RunResult {
 /// Runs one scene once: build, `warmup` untimed steps, `steps` timed steps.
 using RunFunction = std::function<RunResult(const SceneSpec& scene, int32_t warmup, int32_t steps)>;
 
+/// A ray of the ray-cast benchmark: origin and translation, m (exact Q32;
+/// peers get them as doubles).
+struct RaySpec {
+  Vec2 origin;
+  Vec2 translation;
+};
+
+/// One timed batch of the ray-cast benchmark (ray_bench.cpp).
+struct RayBatch {
+  double rays_per_second = 0;
+  double sync_ms = -1;            ///< Tandem: the untimed first query after the step (broad-phase re-sync); −1: none
+  int32_t hits = 0;               ///< rays that hit something
+  bool has_fingerprint = false;   ///< Tandem only
+  uint64_t fingerprint = 0;       ///< FNV-1a of the hits (shape index, fraction raw)
+};
+
+/// A scene built in one engine and stepped `warmup` steps, ready to cast
+/// batches of rays; its destructor frees the world.
+class RaySession {
+ public:
+  virtual ~RaySession() = default;
+  /// One untimed step, then every ray cast once for its closest hit, timed
+  /// (steady_clock).
+  virtual RayBatch batch(const std::vector<RaySpec>& rays) = 0;
+};
+
+/// Builds a RaySession; null with *error set when the engine refuses the scene.
+using RayFunction =
+    std::function<std::unique_ptr<RaySession>(const SceneSpec& scene, int32_t warmup, std::string* error)>;
+
 /// One engine configuration as it appears in the results.
 struct Engine {
   std::string engine;       ///< "tandem", "box2d24", "chipmunk"
@@ -64,6 +96,7 @@ struct Engine {
   int32_t max_bodies = 0;   ///< skip scenes with more dynamic bodies (0: no limit)
   int32_t workers = 1;      ///< Tandem: WorldDef::worker_count; peers: 1
   RunFunction run;
+  RayFunction cast_rays;    ///< the ray-cast benchmark; empty where not written (Chipmunk, Box2D v3)
 };
 
 /// Tandem's broad phases by short name: "naive", "sap", "grid", "tree".

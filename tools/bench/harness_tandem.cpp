@@ -83,8 +83,10 @@ void probe(const SceneSpec& scene, const std::vector<BodyId>& bodies, bool end, 
   q->fingerprint = fp.h;
 }
 
-RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup, int32_t steps) {
-  RunResult result;
+/// Builds the scene in a new world with broad phase `kind`; on refusal false,
+/// the reason in *error and no world left behind.
+bool build_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, WorldId* out_world,
+                  std::vector<BodyId>* out_bodies, std::string* error) {
   WorldDef wd = default_world_def();
   wd.worker_count = workers;
   wd.gravity = {scene.gravity_x, scene.gravity_y};
@@ -92,15 +94,16 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
   wd.broad_phase = kind;
   const Result<WorldId> w = create_world(wd);
   if (!w.ok()) {
-    result.error = "create_world: " + w.status.message;
-    return result;
+    *error = "create_world: " + w.status.message;
+    return false;
   }
-  std::vector<BodyId> bodies;
+  std::vector<BodyId>& bodies = *out_bodies;
+  bodies.clear();
   bodies.reserve(scene.bodies.size());
   const auto fail = [&](const std::string& what, const Status& st, size_t i) {
-    result.error = what + " (body " + std::to_string(i) + "): " + st.message;
+    *error = what + " (body " + std::to_string(i) + "): " + st.message;
     (void)destroy_world(w.value);
-    return result;
+    return false;
   };
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& s = scene.bodies[i];
@@ -123,9 +126,9 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
     for (const BoxPart& part : s.boxes) {
       Polygon box;
       if (!make_offset_box(part.half_width, part.half_height, Vec2{part.cx, part.cy}, Q32{}, Q32{}, &box).ok()) {
-        result.error = "make_offset_box (body " + std::to_string(i) + ") refused";
+        *error = "make_offset_box (body " + std::to_string(i) + ") refused";
         (void)destroy_world(w.value);
-        return result;
+        return false;
       }
       const Result<ShapeId> part_shape = create_polygon_shape(b.value, sd, box);
       if (!part_shape.ok()) return fail("create box part", part_shape.status, i);
@@ -152,9 +155,9 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
         Polygon box;
         const Status gs = make_offset_box(s.half_width, s.half_height, Vec2{}, Q32{}, s.rounding, &box);
         if (!gs.ok()) {
-          result.error = "make_box (body " + std::to_string(i) + ") refused";
+          *error = "make_box (body " + std::to_string(i) + ") refused";
           (void)destroy_world(w.value);
-          return result;
+          return false;
         }
         sh = create_polygon_shape(b.value, sd, box);
         break;
@@ -175,28 +178,97 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
     rd.max_motor_torque = j.max_motor_torque;
     const Result<JointId> joint = create_revolute_joint(w.value, rd);
     if (!joint.ok()) {
-      result.error = "create_revolute_joint (joint " + std::to_string(i) + "): " + joint.status.message;
+      *error = "create_revolute_joint (joint " + std::to_string(i) + "): " + joint.status.message;
       (void)destroy_world(w.value);
-      return result;
+      return false;
     }
   }
+  *out_world = w.value;
+  return true;
+}
+
+RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup, int32_t steps) {
+  RunResult result;
+  WorldId world;
+  std::vector<BodyId> bodies;
+  if (!build_tandem(kind, workers, scene, &world, &bodies, &result.error)) return result;
+  const auto fail = [&](const std::string& what, const Status& st) {
+    result.error = what + ": " + st.message;
+    (void)destroy_world(world);
+    return result;
+  };
   probe(scene, bodies, false, &result.quality);
   const Q32 dt = time_step();
   for (int32_t i = 0; i < warmup; ++i) {
-    const StepResult r = world_step(w.value, dt);
-    if (!r.ok()) return fail("world_step (warm-up " + std::to_string(i) + ")", r.status, 0);
+    const StepResult r = world_step(world, dt);
+    if (!r.ok()) return fail("world_step (warm-up " + std::to_string(i) + ")", r.status);
   }
   const auto t0 = std::chrono::steady_clock::now();
   for (int32_t i = 0; i < steps; ++i) {
-    const StepResult r = world_step(w.value, dt);
-    if (!r.ok()) return fail("world_step (" + std::to_string(i) + ")", r.status, 0);
-    result.profile.add(world_profile(w.value));  // a copy of a few integers; inside the timed loop
+    const StepResult r = world_step(world, dt);
+    if (!r.ok()) return fail("world_step (" + std::to_string(i) + ")", r.status);
+    result.profile.add(world_profile(world));  // a copy of a few integers; inside the timed loop
   }
   const auto t1 = std::chrono::steady_clock::now();
   result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
   probe(scene, bodies, true, &result.quality);
-  (void)destroy_world(w.value);
+  (void)destroy_world(world);
   return result;
+}
+
+class TandemRays final : public RaySession {
+ public:
+  TandemRays(WorldId world, std::vector<BodyId> bodies) : world_(world), bodies_(std::move(bodies)) {}
+  ~TandemRays() override { (void)destroy_world(world_); }
+  TandemRays(const TandemRays&) = delete;
+  TandemRays& operator=(const TandemRays&) = delete;
+
+  RayBatch batch(const std::vector<RaySpec>& rays) override {
+    RayBatch b;
+    (void)world_step(world_, time_step());
+    if (rays.empty()) return b;
+    // The first query after a step re-syncs the broad phase with the step's
+    // poses (work the next step's broad phase then skips): timed apart.
+    const auto s0 = std::chrono::steady_clock::now();
+    (void)world_cast_ray_closest(world_, rays[0].origin, rays[0].translation);
+    const auto s1 = std::chrono::steady_clock::now();
+    b.sync_ms = std::chrono::duration<double, std::milli>(s1 - s0).count();
+    Fnv fnv;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const RaySpec& ray : rays) {
+      const Result<RayHit> hit = world_cast_ray_closest(world_, ray.origin, ray.translation);
+      if (!hit.value.hit) continue;
+      ++b.hits;
+      fnv.add(hit.value.shape.index1);
+      fnv.add(hit.value.fraction.raw);
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(t1 - t0).count();
+    b.rays_per_second = seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0;
+    b.has_fingerprint = true;
+    b.fingerprint = fnv.h;
+    return b;
+  }
+
+ private:
+  WorldId world_;
+  std::vector<BodyId> bodies_;
+};
+
+std::unique_ptr<RaySession> tandem_rays(BroadPhaseKind kind, int32_t workers, const SceneSpec& scene, int32_t warmup,
+                                        std::string* error) {
+  WorldId world;
+  std::vector<BodyId> bodies;
+  if (!build_tandem(kind, workers, scene, &world, &bodies, error)) return nullptr;
+  for (int32_t i = 0; i < warmup; ++i) {
+    const StepResult r = world_step(world, time_step());
+    if (!r.ok()) {
+      *error = "world_step (warm-up " + std::to_string(i) + "): " + r.status.message;
+      (void)destroy_world(world);
+      return nullptr;
+    }
+  }
+  return std::make_unique<TandemRays>(world, std::move(bodies));
 }
 
 }  // namespace
@@ -219,6 +291,9 @@ bool tandem_engine(const std::string& broad_phase, int32_t workers, Engine* out)
     const BroadPhaseKind kind = k.kind;
     e.run = [kind, workers](const SceneSpec& scene, int32_t warmup, int32_t steps) {
       return run_tandem(kind, workers, scene, warmup, steps);
+    };
+    e.cast_rays = [kind, workers](const SceneSpec& scene, int32_t warmup, std::string* error) {
+      return tandem_rays(kind, workers, scene, warmup, error);
     };
     *out = std::move(e);
     return true;

@@ -44,11 +44,12 @@ void probe(const SceneSpec& scene, const std::vector<b2Body*>& bodies, bool end,
   }
 }
 
-RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
-  RunResult result;
+/// Builds the scene in a new b2World; its bodies in spec order into *out_bodies.
+std::unique_ptr<b2World> build_box2d24(const SceneSpec& scene, std::vector<b2Body*>* out_bodies) {
   auto world = std::make_unique<b2World>(b2Vec2(f32(scene.gravity_x), f32(scene.gravity_y)));
   world->SetAllowSleeping(scene.sleep);
-  std::vector<b2Body*> bodies;
+  std::vector<b2Body*>& bodies = *out_bodies;
+  bodies.clear();
   bodies.reserve(scene.bodies.size());
   for (const BodySpec& s : scene.bodies) {
     b2BodyDef bd;
@@ -134,6 +135,13 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
     jd.maxMotorTorque = f32(j.max_motor_torque);
     world->CreateJoint(&jd);
   }
+  return world;
+}
+
+RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
+  RunResult result;
+  std::vector<b2Body*> bodies;
+  const std::unique_ptr<b2World> world = build_box2d24(scene, &bodies);
   probe(scene, bodies, false, &result.quality);
   const float dt = static_cast<float>(to_double(time_step()));
   constexpr int32_t velocity_iterations = 8, position_iterations = 3;
@@ -144,6 +152,60 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
   result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
   probe(scene, bodies, true, &result.quality);
   return result;
+}
+
+/// Closest hit through b2World::RayCast: the callback returns the hit's
+/// fraction, so the ray is clipped to it (Box2D's documented closest-hit use).
+class ClosestCallback : public b2RayCastCallback {
+ public:
+  float ReportFixture(b2Fixture* /*fixture*/, const b2Vec2& /*point*/, const b2Vec2& /*normal*/,
+                      float fraction) override {
+    hit = true;
+    best = fraction;
+    return fraction;
+  }
+  bool hit = false;
+  float best = 1.0f;
+};
+
+class Box2d24Rays final : public RaySession {
+ public:
+  explicit Box2d24Rays(std::unique_ptr<b2World> world) : world_(std::move(world)) {}
+
+  RayBatch batch(const std::vector<RaySpec>& rays) override {
+    RayBatch b;
+    world_->Step(static_cast<float>(to_double(time_step())), 8, 3);
+    from_.clear();
+    to_.clear();
+    for (const RaySpec& r : rays) {
+      from_.emplace_back(f32(r.origin.x), f32(r.origin.y));
+      to_.emplace_back(static_cast<float>(to_double(r.origin.x) + to_double(r.translation.x)),
+                       static_cast<float>(to_double(r.origin.y) + to_double(r.translation.y)));
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < from_.size(); ++i) {
+      if (from_[i].x == to_[i].x && from_[i].y == to_[i].y) continue;  // Box2D asserts on a zero-length ray
+      ClosestCallback cb;
+      world_->RayCast(&cb, from_[i], to_[i]);
+      b.hits += cb.hit ? 1 : 0;
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(t1 - t0).count();
+    b.rays_per_second = seconds > 0 ? static_cast<double>(rays.size()) / seconds : 0.0;
+    return b;
+  }
+
+ private:
+  std::unique_ptr<b2World> world_;
+  std::vector<b2Vec2> from_, to_;
+};
+
+std::unique_ptr<RaySession> box2d24_rays(const SceneSpec& scene, int32_t warmup, std::string* /*error*/) {
+  std::vector<b2Body*> bodies;
+  std::unique_ptr<b2World> world = build_box2d24(scene, &bodies);
+  const float dt = static_cast<float>(to_double(time_step()));
+  for (int32_t i = 0; i < warmup; ++i) world->Step(dt, 8, 3);  // 8 velocity / 3 position iterations
+  return std::make_unique<Box2d24Rays>(std::move(world));
 }
 
 }  // namespace
@@ -190,6 +252,7 @@ Engine box2d24_engine() {
   e.note = "Box2D 2.4.1 (Debian libbox2d), 8 velocity / 3 position iterations";
   e.is_peer = true;
   e.run = run_box2d24;
+  e.cast_rays = box2d24_rays;
   return e;
 }
 

@@ -39,3 +39,18 @@ lines = svg.getElementsByTagName("polyline")
 assert len(lines) == len(engines), f"{len(lines)} polylines for {len(engines)} engines"
 print(f"smoke ok: {len(rows)} rows, {len(engines)} engines")
 PY
+
+# The ray-cast benchmark: every Tandem broad phase and Box2D 2.4 report rays/s,
+# and the Tandem broad phases agree on every hit (the driver exits 1 if not).
+"$bin" rain-90 --rays 300 --runs 2 --warmup 30 -q --csv "$out/rays.csv" >"$out/rays.txt"
+python3 - "$out" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/rays.csv")))
+engines = sorted((r["engine"], r["broad_phase"]) for r in rows)
+assert ("box2d24", "") in engines and len([e for e in engines if e[0] == "tandem"]) == 4, engines
+for r in rows:
+    assert float(r["median_rays_per_s"]) > 0 and int(r["batches"]) == 2 and int(r["rays"]) == 300, r
+tandem_hits = {r["hits"] for r in rows if r["engine"] == "tandem"}
+assert len(tandem_hits) == 1 and int(tandem_hits.pop()) > 0, rows
+print(f"ray smoke ok: {len(rows)} engines")
+PY

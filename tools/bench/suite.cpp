@@ -444,7 +444,9 @@ int run_bench_suite(const BenchOptions& o) {
   }
   // Scenes first, so a typo fails before any time is spent.
   std::vector<SceneSpec> scenes;
-  for (const std::string& name : o.scenes.empty() ? default_scene_names() : o.scenes) {
+  const std::vector<std::string> default_names =
+      o.rays > 0 ? std::vector<std::string>{"rain-4000"} : default_scene_names();
+  for (const std::string& name : o.scenes.empty() ? default_names : o.scenes) {
     SceneSpec s;
     std::string error;
     if (!make_scene(name, &s, &error)) {
@@ -493,6 +495,11 @@ int run_bench_suite(const BenchOptions& o) {
 #ifndef NDEBUG
   std::fprintf(stderr, "bench: WARNING: this is not an optimised build; timings are not meaningful\n");
 #endif
+  if (o.rays > 0) {
+    return run_ray_bench(o, scenes, engines,
+                         machine.cpu + ", " + std::to_string(machine.cores) + " logical cores; " + machine.compiler +
+                             "; " + machine.build + "; " + machine.date + "; load average " + machine.load_before);
+  }
 
   std::vector<Row> rows;
   std::vector<std::string> warnings;

@@ -38,6 +38,8 @@ struct BenchOptions {
   int32_t workers = 1;                    ///< Tandem's WorldDef::worker_count, 1…16 (built-in pool)
   bool profile = false;                   ///< also print Tandem's per-stage profile (median ms per
                                           ///< stage, world_profile()) as a Markdown table
+  int32_t rays = 0;                       ///< > 0: run the ray-cast benchmark (ray_bench.cpp) with this many
+                                          ///< rays per batch instead of the stepping one; default scene rain-4000
 };
 
 /// Runs the suite: progress on stderr, the table on stdout, the files asked
@@ -45,5 +47,16 @@ struct BenchOptions {
 /// different states (after writing everything), 2 on bad options (an unknown scene or broad
 /// phase, runs < 1, a file that cannot be written) with the reason on stderr.
 int run_bench_suite(const BenchOptions& options);
+
+/// The ray-cast benchmark's rays for a scene (ray_bench.cpp: fixed seed,
+/// inside the scene's container, never zero length).
+std::vector<RaySpec> make_rays(const SceneSpec& scene, int32_t count);
+
+/// The ray-cast benchmark (ray_bench.cpp) over scenes × engines (those with
+/// Engine::cast_rays); `machine` is printed in the header. Called by
+/// run_bench_suite when options.rays > 0; returns as it does (1: Tandem's
+/// broad phases disagreed on a hit).
+int run_ray_bench(const BenchOptions& options, const std::vector<SceneSpec>& scenes,
+                  const std::vector<Engine>& engines, const std::string& machine);
 
 }  // namespace tandem::bench
