@@ -316,10 +316,17 @@ struct BroadPhaseStats {
 /// unknown kind.
 Status world_set_broad_phase(WorldId world, BroadPhaseKind kind);
 /// The broad phase in use; naive for an invalid handle.
-BroadPhaseKind world_get_broad_phase(WorldId world);
+BroadPhaseKind world_broad_phase(WorldId world);
 /// The last step's broad-phase figures; zeroes before the first step and for
 /// an invalid handle.
-BroadPhaseStats world_get_broad_phase_stats(WorldId world);
+BroadPhaseStats world_broad_phase_stats(WorldId world);
+/// Deprecated (removed next release): the getters drop `get_`.
+[[deprecated("use world_broad_phase")]] inline BroadPhaseKind world_get_broad_phase(WorldId world) {
+  return world_broad_phase(world);
+}
+[[deprecated("use world_broad_phase_stats")]] inline BroadPhaseStats world_get_broad_phase_stats(WorldId world) {
+  return world_broad_phase_stats(world);
+}
 
 /// A user collision filter: return false to keep shapes a and b (a's index
 /// below b's) from forming a contact. Called inside world_step() — by the
@@ -458,11 +465,18 @@ Status body_set_bullet(BodyId body, bool bullet);
 /// True when the body takes part in the simulation; false for an invalid
 /// handle.
 bool body_is_enabled(BodyId body);
-/// Adds the body back to the simulation (velocity as it was when disabled).
-Status body_enable(BodyId body);
-/// Takes the body out of the simulation: it keeps its pose and velocity, does
-/// not move, and (later) does not collide. Forces are cleared.
-Status body_disable(BodyId body);
+/// Adds the body to the simulation (enabled = true; velocity as it was when
+/// disabled) or takes it out (false): a disabled body keeps its pose and
+/// velocity, does not move and does not collide; its forces are cleared and
+/// the bodies it touched are woken. No change when already so.
+Status body_set_enabled(BodyId body, bool enabled);
+/// Deprecated (removed next release): body_set_enabled(body, true / false).
+[[deprecated("use body_set_enabled(body, true)")]] inline Status body_enable(BodyId body) {
+  return body_set_enabled(body, true);
+}
+[[deprecated("use body_set_enabled(body, false)")]] inline Status body_disable(BodyId body) {
+  return body_set_enabled(body, false);
+}
 
 /// True when a non-static body is awake; false for static bodies and an
 /// invalid handle.
