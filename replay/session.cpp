@@ -236,7 +236,7 @@ bool Session::simulate(uint64_t tick) {
   }
   SessionTickInputs in{config_.player_count, n, tick_inputs_.data()};
   commands_.clear();
-  Status s = callbacks_.make_commands(tick, in, world_, &commands_);
+  Status s = callbacks_.make_commands(static_cast<int64_t>(tick), in, world_, &commands_);
   if (!s.ok()) {
     stop(SessionState::error, "tick " + std::to_string(tick) + ": make_commands failed: " + s.message);
     return false;
@@ -249,7 +249,7 @@ bool Session::simulate(uint64_t tick) {
     stop(SessionState::error, "tick " + std::to_string(tick) + ": step refused: " + step.status.message);
     return false;
   }
-  if (callbacks_.after_step) callbacks_.after_step(tick, world_);
+  if (callbacks_.after_step) callbacks_.after_step(static_cast<int64_t>(tick), world_);
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
   s = rollback_save(world_, &snap_world_[h]);
   if (s.ok() && recording_ && config_.keyframe_interval != 0 && tick % config_.keyframe_interval == 0) {
@@ -308,7 +308,7 @@ void Session::confirm() {
     if (recording_) {
       const size_t h = static_cast<size_t>(t % config_.history_ticks);
       TickRecord rec;
-      rec.tick = t;
+      rec.tick = static_cast<int64_t>(t);
       std::vector<uint8_t> all(size_t{config_.player_count} * config_.input_bytes);
       for (uint32_t p = 0; p < config_.player_count; ++p) {
         std::memcpy(all.data() + size_t{p} * config_.input_bytes, input_at(p, t), config_.input_bytes);
@@ -324,7 +324,7 @@ void Session::confirm() {
       }
       Status s = writer_.append_tick(std::move(rec));
       if (s.ok() && config_.keyframe_interval != 0 && t % config_.keyframe_interval == 0) {
-        s = writer_.append_keyframe(t, snap_keyframe_[h], snap_game_[h]);
+        s = writer_.append_keyframe(static_cast<int64_t>(t), snap_keyframe_[h], snap_game_[h]);
       }
       if (!s.ok()) {
         stop(SessionState::error, "recording tick " + std::to_string(t) + ": " + s.message);
@@ -367,7 +367,7 @@ bool Session::begin_frame() {
       if (q == config_.local_endpoint) continue;
       if (stats_.frames - last_heard_frame_[q] > config_.disconnect_timeout_frames) {
         stop_.endpoint = q;
-        stop_.last_heard_tick = remote_tick_[q];
+        stop_.last_heard_tick = static_cast<int64_t>(remote_tick_[q]);
         stop(SessionState::peer_left, "player " + std::to_string(q) + " silent for " +
                                           std::to_string(config_.disconnect_timeout_frames) + " frames (last tick heard " +
                                           std::to_string(remote_tick_[q]) + ", local tick " + std::to_string(current_) + ")");
@@ -458,15 +458,17 @@ int32_t Session::frames_ahead() const {
   return static_cast<int32_t>(std::min<int64_t>(ahead, 1000));
 }
 
-uint64_t Session::remote_confirmed_through() const {
+int64_t Session::remote_confirmed_through() const {
   uint64_t m = UINT64_MAX;
   for (uint32_t q = 0; q < endpoint_count(); ++q) {
     if (q != config_.local_endpoint && gone_[q] == 0) m = std::min(m, remote_hash_through_[q]);
   }
-  return m == UINT64_MAX ? 0 : m;
+  return m == UINT64_MAX ? 0 : static_cast<int64_t>(m);
 }
 
-uint64_t Session::confirmed_hash(uint64_t tick) const {
+uint64_t Session::confirmed_hash(int64_t signed_tick) const {
+  if (signed_tick < 0) return 0;
+  const uint64_t tick = static_cast<uint64_t>(signed_tick);
   if (tick > confirmed_ || hash_tick_.empty() || hash_tick_[ring(tick)] != tick) return 0;
   return hash_[ring(tick)];
 }
@@ -476,20 +478,20 @@ uint64_t Session::confirmed_hash(uint64_t tick) const {
 void Session::stop(SessionState state, const std::string& message) {
   if (stop_.state != SessionState::running) return;
   stop_.state = state;
-  stop_.tick = state == SessionState::desynced ? stop_.tick : current_;
+  stop_.tick = state == SessionState::desynced ? stop_.tick : static_cast<int64_t>(current_);
   stop_.message = message;
 }
 
 void Session::desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint64_t remote_hash, bool reported) {
   if (stop_.state != SessionState::running) return;
-  stop_.tick = tick;
+  stop_.tick = static_cast<int64_t>(tick);
   stop_.endpoint = endpoint;
   stop_.local_hash = local_hash;
   stop_.remote_hash = remote_hash;
   std::string message = reported ? "endpoint " + std::to_string(endpoint) + " reported a desync at tick " + std::to_string(tick)
                                  : "desync at tick " + std::to_string(tick) + " with endpoint " + std::to_string(endpoint);
   message += ": local hash " + std::to_string(local_hash) + ", remote " + std::to_string(remote_hash);
-  const Status s = state_image(tick, &desync_image_);
+  const Status s = state_image(static_cast<int64_t>(tick), &desync_image_);
   desync_image_tick_ = s.ok() ? tick : 0;
   if (!s.ok()) message += " (state image of that tick no longer kept: " + s.message + ")";
   stop(SessionState::desynced, message);
@@ -499,8 +501,10 @@ void Session::desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint
   send_packets();
 }
 
-Status Session::ring_slot(uint64_t tick, size_t* slot) const {
+Status Session::ring_slot(int64_t signed_tick, size_t* slot) const {
   if (snap_tick_.empty()) return bad("session not started");
+  if (signed_tick < 0) return bad("tick " + std::to_string(signed_tick) + " is negative");
+  const uint64_t tick = static_cast<uint64_t>(signed_tick);
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
   if (tick > current_ || snap_tick_[h] != tick) {
     return bad("tick " + std::to_string(tick) + " is not in the snapshot ring (ticks " +
@@ -511,7 +515,7 @@ Status Session::ring_slot(uint64_t tick, size_t* slot) const {
   return {};
 }
 
-Status Session::state_image(uint64_t tick, std::vector<uint8_t>* out) const {
+Status Session::state_image(int64_t tick, std::vector<uint8_t>* out) const {
   size_t h = 0;
   const Status kept = ring_slot(tick, &h);
   if (!kept.ok()) return kept;
@@ -544,7 +548,7 @@ Status Session::write_artifacts(const std::string& prefix) {
   }
   if (stop_.state == SessionState::desynced && desync_image_tick_ != 0) return write_file(prefix + ".state", desync_image_);
   std::vector<uint8_t> image;
-  const Status s = state_image(confirmed_, &image);
+  const Status s = state_image(static_cast<int64_t>(confirmed_), &image);
   if (!s.ok()) return s;
   return write_file(prefix + ".state", image);
 }
@@ -556,7 +560,7 @@ void Session::peer_disconnected(uint32_t endpoint) {
     return;
   }
   stop_.endpoint = endpoint;
-  stop_.last_heard_tick = remote_tick_[endpoint];
+  stop_.last_heard_tick = static_cast<int64_t>(remote_tick_[endpoint]);
   stop(SessionState::peer_left, "player " + std::to_string(endpoint) + " disconnected (last tick heard " +
                                     std::to_string(remote_tick_[endpoint]) + ", local tick " + std::to_string(current_) + ")");
 }

@@ -29,12 +29,24 @@ namespace {
 // (see session.cpp's ring bounds).
 constexpr uint64_t k_accept_ahead = 192;  // < k_session_ring_ticks − 32
 
+Status bad(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
+
+// A tick field of a decoded packet: read from a u32, so 0…UINT32_MAX.
+uint64_t decoded(int64_t tick) { return static_cast<uint64_t>(tick); }
+
 }  // namespace
 
 // --- sending --------------------------------------------------------------------
 
-void Session::send_raw(uint32_t endpoint, size_t size) {
-  if (size == 0) return;
+void Session::send_packet(uint32_t endpoint) {
+  size_t size = 0;
+  const Status s = encode_session_packet(packet_out_, out_buffer_.data(), out_buffer_.size(), &size);
+  if (!s.ok()) {
+    // Only a tick past the u32 wire range (2^32 ticks: 2 years at 60 Hz) can
+    // get here; stop instead of sending a truncated tick.
+    stop(SessionState::error, "cannot send to endpoint " + std::to_string(endpoint) + ": " + s.message);
+    return;
+  }
   ++stats_.packets_sent;
   stats_.bytes_sent += size;
   callbacks_.send(endpoint, std::span<const uint8_t>(out_buffer_.data(), size));
@@ -51,17 +63,17 @@ void Session::send_packets() {
     p.sequence = ++sequence_out_[q];
     if (notices) {
       p.type = SessionPacketType::desync;
-      p.tick = static_cast<uint32_t>(desync_notice_tick_);
+      p.tick = static_cast<int64_t>(desync_notice_tick_);
       p.hash = desync_notice_hash_;
-      send_raw(q, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
+      send_packet(q);
       continue;
     }
     p.type = SessionPacketType::input;
-    p.sender_tick = static_cast<uint32_t>(current_);
+    p.sender_tick = static_cast<int64_t>(current_);
     p.advantage = static_cast<int32_t>(std::clamp<int64_t>(
         static_cast<int64_t>(current_) - static_cast<int64_t>(remote_tick_[q]), INT32_MIN, INT32_MAX));
-    p.input_ack = q < config_.player_count ? static_cast<uint32_t>(contiguous_[q]) : 0;
-    p.hash_ack = static_cast<uint32_t>(remote_hash_through_[q]);
+    p.input_ack = q < config_.player_count ? static_cast<int64_t>(contiguous_[q]) : 0;
+    p.hash_ack = static_cast<int64_t>(remote_hash_through_[q]);
     p.input_count = 0;
     p.input_bytes = static_cast<uint8_t>(config_.input_bytes);
     p.first_input_tick = 0;
@@ -85,7 +97,7 @@ void Session::send_packets() {
         continue;
       }
       if (first <= last_local_tick_) {
-        p.first_input_tick = static_cast<uint32_t>(first);
+        p.first_input_tick = static_cast<int64_t>(first);
         p.input_count = static_cast<uint8_t>(std::min<uint64_t>(last_local_tick_ - first + 1, k_packet_max_inputs));
         for (uint32_t i = 0; i < p.input_count; ++i) {
           const size_t slot = static_cast<size_t>((first + i) % config_.input_history_ticks);
@@ -101,11 +113,11 @@ void Session::send_packets() {
     uint64_t hfirst = hash_ack_from_[q] + 1;
     if (hfirst <= confirmed_ && confirmed_ - hfirst >= k_session_ring_ticks - 8) hfirst = confirmed_ - k_packet_max_hashes + 1;
     if (hfirst <= confirmed_) {
-      p.first_hash_tick = static_cast<uint32_t>(hfirst);
+      p.first_hash_tick = static_cast<int64_t>(hfirst);
       p.hash_count = static_cast<uint8_t>(std::min<uint64_t>(confirmed_ - hfirst + 1, k_packet_max_hashes));
       for (uint32_t i = 0; i < p.hash_count; ++i) p.hashes[i] = hash_[ring(hfirst + i)];
     }
-    send_raw(q, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
+    send_packet(q);
   }
   if (notices) --desync_notices_left_;
 }
@@ -158,7 +170,7 @@ void Session::receive(uint32_t from, std::span<const uint8_t> data) {
       break;
     case SessionPacketType::desync:
       if (stop_.state == SessionState::running) {
-        const uint64_t t = p.tick;
+        const uint64_t t = decoded(p.tick);
         const uint64_t mine = hash_tick_[ring(t)] == t ? hash_[ring(t)] : 0;
         desync(from, t, mine, p.hash, true);
       }
@@ -177,16 +189,16 @@ void Session::receive(uint32_t from, std::span<const uint8_t> data) {
 }
 
 void Session::handle_input(uint32_t from, const SessionPacket& p) {
-  remote_tick_[from] = std::max<uint64_t>(remote_tick_[from], p.sender_tick);
-  if (p.input_ack <= last_local_tick_) input_ack_from_[from] = std::max<uint64_t>(input_ack_from_[from], p.input_ack);
-  if (p.hash_ack <= confirmed_) hash_ack_from_[from] = std::max<uint64_t>(hash_ack_from_[from], p.hash_ack);
+  remote_tick_[from] = std::max<uint64_t>(remote_tick_[from], decoded(p.sender_tick));
+  if (decoded(p.input_ack) <= last_local_tick_) input_ack_from_[from] = std::max<uint64_t>(input_ack_from_[from], decoded(p.input_ack));
+  if (decoded(p.hash_ack) <= confirmed_) hash_ack_from_[from] = std::max<uint64_t>(hash_ack_from_[from], decoded(p.hash_ack));
   if (p.input_count != 0) {
     if (from >= config_.player_count) {
       reject("spectator endpoint " + std::to_string(from) + " sent inputs");
       return;
     }
     for (uint32_t i = 0; i < p.input_count; ++i) {
-      const uint64_t t = uint64_t{p.first_input_tick} + i;
+      const uint64_t t = decoded(p.first_input_tick) + i;
       const uint8_t* bytes = p.input(i).data();
       if (t > confirmed_ + k_accept_ahead) {
         // A sender starts at our oldest missing input, so only a first tick
@@ -213,15 +225,15 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
     }
   }
   uint64_t& through = remote_hash_through_[from];
-  if (p.hash_count != 0 && p.first_hash_tick > through + 1) {
+  if (p.hash_count != 0 && decoded(p.first_hash_tick) > through + 1) {
     // The sender acknowledged-through is never ahead of ours, so a gap means
     // it could not resend those hashes (they left its ring): skip them.
-    stats_.hashes_skipped += p.first_hash_tick - 1 - through;
-    through = p.first_hash_tick - 1;
+    stats_.hashes_skipped += decoded(p.first_hash_tick) - 1 - through;
+    through = decoded(p.first_hash_tick) - 1;
     hash_checked_through_[from] = std::max(hash_checked_through_[from], through);
   }
   for (uint32_t i = 0; i < p.hash_count; ++i) {
-    const uint64_t t = uint64_t{p.first_hash_tick} + i;
+    const uint64_t t = decoded(p.first_hash_tick) + i;
     if (t <= hash_checked_through_[from] || t >= hash_checked_through_[from] + k_session_ring_ticks) continue;
     const size_t r = size_t{from} * k_session_ring_ticks + ring(t);
     remote_hash_[r] = p.hashes[i];
@@ -232,7 +244,7 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
 
 // --- per-body hashes ----------------------------------------------------------------
 
-Status Session::local_body_hashes(uint64_t tick, std::vector<uint64_t>* out) const {
+Status Session::local_body_hashes(int64_t tick, std::vector<uint64_t>* out) const {
   size_t h = 0;
   const Status kept = ring_slot(tick, &h);
   if (!kept.ok()) return kept;
@@ -244,17 +256,26 @@ Status Session::local_body_hashes(uint64_t tick, std::vector<uint64_t>* out) con
   return s;
 }
 
-void Session::request_body_hashes(uint32_t endpoint, uint64_t tick, uint32_t first_body, uint32_t count) {
-  if (endpoint >= endpoint_count() || endpoint == config_.local_endpoint || stop_.state == SessionState::idle) return;
+Status Session::request_body_hashes(uint32_t endpoint, int64_t tick, uint32_t first_body, uint32_t count) {
+  const char* fn = "Session::request_body_hashes";
+  if (stop_.state == SessionState::idle) return bad(std::string(fn) + ": start() first");
+  if (endpoint >= endpoint_count() || endpoint == config_.local_endpoint) {
+    return bad(std::string(fn) + ": endpoint " + std::to_string(endpoint) + " is not a remote endpoint (0…" +
+               std::to_string(endpoint_count() - 1) + ", not the local " + std::to_string(config_.local_endpoint) + ")");
+  }
+  if (tick < 0 || tick > int64_t{UINT32_MAX}) {
+    return bad(std::string(fn) + ": tick " + std::to_string(tick) + " outside 0…" + std::to_string(UINT32_MAX));
+  }
   SessionPacket& p = packet_out_;
   p.type = SessionPacketType::body_hash_request;
   p.session_id = config_.session_id;
   p.sender = static_cast<uint8_t>(config_.local_endpoint);
   p.sequence = ++sequence_out_[endpoint];
-  p.tick = static_cast<uint32_t>(tick);
+  p.tick = tick;
   p.first_body = first_body;
   p.body_count = std::min(count, k_packet_max_body_hashes);
-  send_raw(endpoint, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
+  send_packet(endpoint);
+  return Status{};
 }
 
 void Session::handle_body_request(uint32_t from, const SessionPacket& req) {
@@ -275,7 +296,7 @@ void Session::handle_body_request(uint32_t from, const SessionPacket& req) {
   p.first_body = req.first_body;
   p.body_count = count;
   p.body_hash_bytes = std::span<const uint8_t>(body_hash_bytes_.data(), body_hash_bytes_.size());
-  send_raw(from, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
+  send_packet(from);
 }
 
 }  // namespace tandem
