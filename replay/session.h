@@ -7,6 +7,9 @@
 // TICKS are numbered as in a replay (replay_file.h): tick t applies the
 // commands made from tick t's inputs to the state after tick t − 1, then
 // steps. Ticks 1…K (K = input delay) use all-zero inputs for every player.
+// Tick numbers are int64_t in this API (as everywhere in Tandem); packets
+// carry them as u32 (session_packet.h), and a tick outside that range is
+// refused by name, never truncated.
 //
 // INPUTS. Each player supplies `input_bytes` opaque bytes per frame; the
 // input given to the advance_frame() that simulates tick t is scheduled for
