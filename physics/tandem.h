@@ -28,6 +28,14 @@
 //   * Nothing throws. Running out of memory is not handled (std::bad_alloc
 //     from the standard containers, outside step only).
 //
+// NAMES AND OUTPUTS: getters are noun_property (no get_), setters
+// noun_set_property, predicates noun_is_x, feature toggles noun_enable_x(bool).
+// Lists of existing objects are written to (T* out_ids, int32_t capacity)
+// and the full count is returned (world_bodies, body_shapes, ...); results a
+// call computes go to a std::vector<T>* out, last (queries, chains); event
+// lists are spans into world-owned buffers. Deprecated names are listed in
+// README.md ("Naming and deprecations") and go in the next release.
+//
 // THREADS: worlds are independent; one world must be used by one thread at a
 // time. create_world / destroy_world may be called from any thread. Inside
 // world_step() a world may use worker threads (WorldDef::worker_count, its
