@@ -97,11 +97,14 @@ tandem_status tandem_body_set_bullet(tandem_body_id body, bool bullet) {
   return guard("tandem_body_set_bullet", [&] { return status(body_set_bullet(to_cpp(body), bullet)); });
 }
 bool tandem_body_is_enabled(tandem_body_id body) { return body_is_enabled(to_cpp(body)); }
+tandem_status tandem_body_set_enabled(tandem_body_id body, bool enabled) {
+  return guard("tandem_body_set_enabled", [&] { return status(body_set_enabled(to_cpp(body), enabled)); });
+}
 tandem_status tandem_body_enable(tandem_body_id body) {
-  return guard("tandem_body_enable", [&] { return status(body_enable(to_cpp(body))); });
+  return guard("tandem_body_enable", [&] { return status(body_set_enabled(to_cpp(body), true)); });
 }
 tandem_status tandem_body_disable(tandem_body_id body) {
-  return guard("tandem_body_disable", [&] { return status(body_disable(to_cpp(body))); });
+  return guard("tandem_body_disable", [&] { return status(body_set_enabled(to_cpp(body), false)); });
 }
 bool tandem_body_is_awake(tandem_body_id body) { return body_is_awake(to_cpp(body)); }
 tandem_status tandem_body_set_awake(tandem_body_id body, bool awake) {

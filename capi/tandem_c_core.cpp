@@ -294,12 +294,17 @@ tandem_status tandem_world_set_broad_phase(tandem_world_id world, int32_t kind) 
   return guard("tandem_world_set_broad_phase",
                [&] { return status(world_set_broad_phase(to_cpp(world), static_cast<BroadPhaseKind>(kind))); });
 }
-int32_t tandem_world_get_broad_phase(tandem_world_id world) {
-  return static_cast<int32_t>(world_get_broad_phase(to_cpp(world)));
+int32_t tandem_world_broad_phase(tandem_world_id world) {
+  return static_cast<int32_t>(world_broad_phase(to_cpp(world)));
 }
-tandem_broad_phase_stats tandem_world_get_broad_phase_stats(tandem_world_id world) {
-  const BroadPhaseStats s = world_get_broad_phase_stats(to_cpp(world));
+tandem_broad_phase_stats tandem_world_broad_phase_stats(tandem_world_id world) {
+  const BroadPhaseStats s = world_broad_phase_stats(to_cpp(world));
   return {s.proxies, s.candidate_pairs, s.pairs, s.touching_pairs, s.update_nanoseconds};
+}
+// Deprecated names, kept for one release.
+int32_t tandem_world_get_broad_phase(tandem_world_id world) { return tandem_world_broad_phase(world); }
+tandem_broad_phase_stats tandem_world_get_broad_phase_stats(tandem_world_id world) {
+  return tandem_world_broad_phase_stats(world);
 }
 
 tandem_status tandem_world_set_custom_filter(tandem_world_id world, tandem_custom_filter_fn filter, void* context) {

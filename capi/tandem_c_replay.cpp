@@ -248,8 +248,7 @@ tandem_status tandem_recorder_submit_payload(tandem_recorder_id recorder, const 
       return fail(TANDEM_ERROR_INVALID_ARGUMENT, std::string(fn) + ": " + std::to_string(size) + " bytes exceed " +
                                                      std::to_string(k_max_user_payload_bytes));
     }
-    rec->recorder.submit_payload(std::vector<uint8_t>(payload, payload + size));
-    return succeed();
+    return status(rec->recorder.submit_payload(std::vector<uint8_t>(payload, payload + size)));
   });
 }
 
@@ -271,8 +270,8 @@ tandem_status tandem_recorder_finish(tandem_recorder_id recorder) {
   });
 }
 
-uint64_t tandem_recorder_tick_count(tandem_recorder_id recorder) {
-  return guard_value(uint64_t{0}, [&] {
+int64_t tandem_recorder_tick_count(tandem_recorder_id recorder) {
+  return guard_value(int64_t{0}, [&] {
     const tandem_status saved = t_code;
     const std::string message = t_message;
     RecorderObject* rec = recorders().get("tandem_recorder_tick_count", recorder.index1, recorder.generation);
@@ -359,15 +358,15 @@ tandem_status tandem_replay_destroy(tandem_replay_id replay) {
                [&] { return replays().remove("tandem_replay_destroy", replay.index1, replay.generation); });
 }
 
-uint64_t tandem_replay_tick_count(tandem_replay_id replay) {
-  return guard_value(uint64_t{0}, [&] {
+int64_t tandem_replay_tick_count(tandem_replay_id replay) {
+  return guard_value(int64_t{0}, [&] {
     const ReplayObject* r = peek_replay(replay);
     return r != nullptr ? r->replay.tick_count() : 0;
   });
 }
 
 
-tandem_status tandem_replay_tick_hash(tandem_replay_id replay, uint64_t tick, uint64_t* out_hash) {
+tandem_status tandem_replay_tick_hash(tandem_replay_id replay, int64_t tick, uint64_t* out_hash) {
   static const char* fn = "tandem_replay_tick_hash";
   if (out_hash == nullptr) return null_pointer(fn, "out_hash");
   return guard(fn, [&] {

@@ -49,7 +49,7 @@ SessionCallbacks adapt(const tandem_session_callbacks* cb) {
   o.send = [cb](uint32_t endpoint, std::span<const uint8_t> packet) {
     cb->send(cb->context, endpoint, packet.data(), packet.size());
   };
-  o.make_commands = [cb](uint64_t tick, const SessionTickInputs& in, WorldId world, std::vector<Command>* out) {
+  o.make_commands = [cb](int64_t tick, const SessionTickInputs& in, WorldId world, std::vector<Command>* out) {
     tandem_command_list list{out};
     const tandem_status s = cb->make_commands(cb->context, tick, in.data, in.player_count, in.input_bytes,
                                               tandem_c_internal::to_c(world), &list);
@@ -58,7 +58,7 @@ SessionCallbacks adapt(const tandem_session_callbacks* cb) {
                                                     " returned " + tandem_status_name(s)};
   };
   if (cb->after_step != nullptr) {
-    o.after_step = [cb](uint64_t tick, WorldId world) {
+    o.after_step = [cb](int64_t tick, WorldId world) {
       cb->after_step(cb->context, tick, tandem_c_internal::to_c(world));
     };
   }
@@ -202,19 +202,19 @@ tandem_status tandem_session_peer_disconnected(tandem_session_id session, uint32
 int32_t tandem_session_frames_ahead(tandem_session_id session) {
   return session_value(session, int32_t{0}, [](const Session& s) { return s.frames_ahead(); });
 }
-uint64_t tandem_session_current_tick(tandem_session_id session) {
-  return session_value(session, uint64_t{0}, [](const Session& s) { return s.current_tick(); });
+int64_t tandem_session_current_tick(tandem_session_id session) {
+  return session_value(session, int64_t{0}, [](const Session& s) { return s.current_tick(); });
 }
-uint64_t tandem_session_confirmed_tick(tandem_session_id session) {
-  return session_value(session, uint64_t{0}, [](const Session& s) { return s.confirmed_tick(); });
+int64_t tandem_session_confirmed_tick(tandem_session_id session) {
+  return session_value(session, int64_t{0}, [](const Session& s) { return s.confirmed_tick(); });
 }
-uint64_t tandem_session_remote_confirmed_through(tandem_session_id session) {
-  return session_value(session, uint64_t{0}, [](const Session& s) { return s.remote_confirmed_through(); });
+int64_t tandem_session_remote_confirmed_through(tandem_session_id session) {
+  return session_value(session, int64_t{0}, [](const Session& s) { return s.remote_confirmed_through(); });
 }
 uint64_t tandem_session_start_hash(tandem_session_id session) {
   return session_value(session, uint64_t{0}, [](const Session& s) { return s.start_hash(); });
 }
-uint64_t tandem_session_confirmed_hash(tandem_session_id session, uint64_t tick) {
+uint64_t tandem_session_confirmed_hash(tandem_session_id session, int64_t tick) {
   return session_value(session, uint64_t{0}, [tick](const Session& s) { return s.confirmed_hash(tick); });
 }
 int32_t tandem_session_state(tandem_session_id session) {
@@ -289,7 +289,7 @@ tandem_status tandem_session_replay_bytes(tandem_session_id session, uint8_t* ou
   });
 }
 
-tandem_status tandem_session_state_image(tandem_session_id session, uint64_t tick, uint8_t* out_bytes,
+tandem_status tandem_session_state_image(tandem_session_id session, int64_t tick, uint8_t* out_bytes,
                                          size_t capacity, size_t* out_size) {
   static const char* fn = "tandem_session_state_image";
   return guard(fn, [&] {
@@ -310,18 +310,17 @@ tandem_status tandem_session_write_artifacts(tandem_session_id session, const ch
   });
 }
 
-tandem_status tandem_session_request_body_hashes(tandem_session_id session, uint32_t endpoint, uint64_t tick,
+tandem_status tandem_session_request_body_hashes(tandem_session_id session, uint32_t endpoint, int64_t tick,
                                                  uint32_t first_body, uint32_t count) {
   static const char* fn = "tandem_session_request_body_hashes";
   return guard(fn, [&] {
     TANDEM_C_GET_SESSION(s, fn, session);
-    s->session.request_body_hashes(endpoint, tick, first_body, count);
-    return succeed();
+    return status(s->session.request_body_hashes(endpoint, tick, first_body, count));
   });
 }
 
 tandem_status tandem_session_remote_body_hashes(tandem_session_id session, uint32_t* out_endpoint,
-                                                uint64_t* out_tick, uint32_t* out_first_body, uint64_t* out_hashes,
+                                                int64_t* out_tick, uint32_t* out_first_body, uint64_t* out_hashes,
                                                 int32_t capacity, int32_t* out_count) {
   static const char* fn = "tandem_session_remote_body_hashes";
   return guard(fn, [&] {
@@ -334,7 +333,7 @@ tandem_status tandem_session_remote_body_hashes(tandem_session_id session, uint3
   });
 }
 
-tandem_status tandem_session_local_body_hashes(tandem_session_id session, uint64_t tick, uint64_t* out_hashes,
+tandem_status tandem_session_local_body_hashes(tandem_session_id session, int64_t tick, uint64_t* out_hashes,
                                                int32_t capacity, int32_t* out_count) {
   static const char* fn = "tandem_session_local_body_hashes";
   return guard(fn, [&] {

@@ -12,7 +12,7 @@ using tandem_c_internal::to_cpp;
 // The C++ PayloadHandler calling a C one (unset for NULL).
 PayloadHandler payload_handler(tandem_payload_fn fn, void* context) {
   if (fn == nullptr) return {};
-  return [fn, context](uint64_t tick, std::span<const uint8_t> payload, std::vector<Command>* out) {
+  return [fn, context](int64_t tick, std::span<const uint8_t> payload, std::vector<Command>* out) {
     tandem_command_list list{out};
     const tandem_status s = fn(context, tick, payload.data(), payload.size(), &list);
     if (s == TANDEM_OK) return Status{};
@@ -23,7 +23,7 @@ PayloadHandler payload_handler(tandem_payload_fn fn, void* context) {
 
 ProgressCallback progress_callback(tandem_progress_fn fn, void* context) {
   if (fn == nullptr) return {};
-  return [fn, context](uint64_t done, uint64_t total) { fn(context, done, total); };
+  return [fn, context](int64_t done, int64_t total) { fn(context, done, total); };
 }
 
 DiffOptions to_cpp(const tandem_diff_options* o) {
@@ -91,7 +91,7 @@ tandem_status check_record(const char* fn, const DecodedState& s, int32_t record
 }  // namespace
 
 // --- replay positioning with payloads ----------------------------------------------------------
-tandem_status tandem_replay_create_world_at_with(tandem_replay_id replay, uint64_t tick, tandem_payload_fn payloads,
+tandem_status tandem_replay_create_world_at_with(tandem_replay_id replay, int64_t tick, tandem_payload_fn payloads,
                                                  void* context, tandem_world_id* out_world) {
   static const char* fn = "tandem_replay_create_world_at";
   if (out_world == nullptr) return null_pointer(fn, "out_world");
@@ -105,11 +105,11 @@ tandem_status tandem_replay_create_world_at_with(tandem_replay_id replay, uint64
     return status(w.status);
   });
 }
-tandem_status tandem_replay_create_world_at(tandem_replay_id replay, uint64_t tick, tandem_world_id* out_world) {
+tandem_status tandem_replay_create_world_at(tandem_replay_id replay, int64_t tick, tandem_world_id* out_world) {
   return tandem_replay_create_world_at_with(replay, tick, nullptr, nullptr, out_world);
 }
 
-tandem_status tandem_replay_seek_with(tandem_replay_id replay, tandem_world_id world, uint64_t tick,
+tandem_status tandem_replay_seek_with(tandem_replay_id replay, tandem_world_id world, int64_t tick,
                                       tandem_payload_fn payloads, void* context) {
   static const char* fn = "tandem_replay_seek";
   return guard(fn, [&] {
@@ -117,7 +117,7 @@ tandem_status tandem_replay_seek_with(tandem_replay_id replay, tandem_world_id w
     return status(r->replay.seek(to_cpp(world), tick, payload_handler(payloads, context)));
   });
 }
-tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, uint64_t tick) {
+tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, int64_t tick) {
   return tandem_replay_seek_with(replay, world, tick, nullptr, nullptr);
 }
 
@@ -131,7 +131,7 @@ tandem_verify_options tandem_default_verify_options(void) {
   return o;
 }
 
-tandem_status tandem_verify_replay(tandem_replay_id replay, uint64_t max_ticks, bool locate,
+tandem_status tandem_verify_replay(tandem_replay_id replay, int64_t max_ticks, bool locate,
                                    tandem_verify_report* out_report) {
   VerifyOptions options;
   options.max_ticks = max_ticks;
@@ -179,7 +179,7 @@ tandem_status tandem_diff_replays(tandem_replay_id a, tandem_replay_id b, tandem
 }
 
 tandem_status tandem_diff_replay_live(tandem_replay_id replay, tandem_world_id live, tandem_live_tick_fn advance,
-                                      void* context, uint64_t ticks, const tandem_diff_options* options,
+                                      void* context, int64_t ticks, const tandem_diff_options* options,
                                       tandem_diff_report* out_report) {
   static const char* fn = "tandem_diff_replay_live";
   if (out_report == nullptr) return null_pointer(fn, "out_report");
@@ -187,7 +187,7 @@ tandem_status tandem_diff_replay_live(tandem_replay_id replay, tandem_world_id l
   if (advance == nullptr) return null_pointer(fn, "advance");
   return guard(fn, [&] {
     TANDEM_C_GET_REPLAY(r, fn, replay);
-    const LiveTick tick = [advance, context](uint64_t t) {
+    const LiveTick tick = [advance, context](int64_t t) {
       const tandem_status s = advance(context, t);
       if (s == TANDEM_OK) return Status{};
       return Status{StatusCode::invalid_argument,

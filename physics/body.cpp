@@ -585,21 +585,18 @@ bool body_is_enabled(BodyId id) {
   return get_body(id, false, [](const World& w, int32_t i) { return body_at(&w, i).enabled; });
 }
 
-Status body_enable(BodyId id) {
-  return set_body(id, "body_enable", [&](World* w, int32_t i) {
+Status body_set_enabled(BodyId id, bool enabled) {
+  return set_body(id, "body_set_enabled", [&](World* w, int32_t i) {
     Body& body = body_at(w, i);
-    if (!body.enabled) {
-      body.enabled = true;
-      update_body_shape_bounds(w, i);
-      wake_body_island(w, i);
+    if (enabled) {
+      if (!body.enabled) {
+        body.enabled = true;
+        update_body_shape_bounds(w, i);
+        wake_body_island(w, i);
+      }
+      return Status{};
     }
-    return Status{};
-  });
-}
-
-Status body_disable(BodyId id) {
-  return set_body(id, "body_disable", [&](World* w, int32_t i) {
-    if (body_at(w, i).enabled) wake_body_and_touching(w, i, true);
+    if (body.enabled) wake_body_and_touching(w, i, true);
     body_at(w, i).enabled = false;
     broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
     sim_at(w, i).force = {};

@@ -21,7 +21,7 @@
 // one sorted list whatever order the structure visited pairs in.
 //
 // Timing: update_nanoseconds comes from std::chrono::steady_clock and is only
-// stored for world_get_broad_phase_stats; nothing reads it back.
+// stored for world_broad_phase_stats; nothing reads it back.
 #include "physics/broad_phase.h"
 
 #include <chrono>
@@ -349,12 +349,12 @@ Status world_set_broad_phase(WorldId id, BroadPhaseKind kind) {
   return s;
 }
 
-BroadPhaseKind world_get_broad_phase(WorldId id) {
+BroadPhaseKind world_broad_phase(WorldId id) {
   const World* world = find_world(id);
   return world == nullptr ? BroadPhaseKind::naive : world->def.broad_phase;
 }
 
-BroadPhaseStats world_get_broad_phase_stats(WorldId id) {
+BroadPhaseStats world_broad_phase_stats(WorldId id) {
   const World* world = find_world(id);
   if (world == nullptr) return BroadPhaseStats{};
   BroadPhaseStats stats = world->broad_phase.stats;

@@ -28,6 +28,14 @@
 //   * Nothing throws. Running out of memory is not handled (std::bad_alloc
 //     from the standard containers, outside step only).
 //
+// NAMES AND OUTPUTS: getters are noun_property (no get_), setters
+// noun_set_property, predicates noun_is_x, feature toggles noun_enable_x(bool).
+// Lists of existing objects are written to (T* out_ids, int32_t capacity)
+// and the full count is returned (world_bodies, body_shapes, ...); results a
+// call computes go to a std::vector<T>* out, last (queries, chains); event
+// lists are spans into world-owned buffers. Deprecated names are listed in
+// README.md ("Naming and deprecations") and go in the next release.
+//
 // THREADS: worlds are independent; one world must be used by one thread at a
 // time. create_world / destroy_world may be called from any thread. Inside
 // world_step() a world may use worker threads (WorldDef::worker_count, its
@@ -316,10 +324,17 @@ struct BroadPhaseStats {
 /// unknown kind.
 Status world_set_broad_phase(WorldId world, BroadPhaseKind kind);
 /// The broad phase in use; naive for an invalid handle.
-BroadPhaseKind world_get_broad_phase(WorldId world);
+BroadPhaseKind world_broad_phase(WorldId world);
 /// The last step's broad-phase figures; zeroes before the first step and for
 /// an invalid handle.
-BroadPhaseStats world_get_broad_phase_stats(WorldId world);
+BroadPhaseStats world_broad_phase_stats(WorldId world);
+/// Deprecated (removed next release): the getters drop `get_`.
+[[deprecated("use world_broad_phase")]] inline BroadPhaseKind world_get_broad_phase(WorldId world) {
+  return world_broad_phase(world);
+}
+[[deprecated("use world_broad_phase_stats")]] inline BroadPhaseStats world_get_broad_phase_stats(WorldId world) {
+  return world_broad_phase_stats(world);
+}
 
 /// A user collision filter: return false to keep shapes a and b (a's index
 /// below b's) from forming a contact. Called inside world_step() — by the
@@ -459,11 +474,18 @@ Status body_set_bullet(BodyId body, bool bullet);
 /// True when the body takes part in the simulation; false for an invalid
 /// handle.
 bool body_is_enabled(BodyId body);
-/// Adds the body back to the simulation (velocity as it was when disabled).
-Status body_enable(BodyId body);
-/// Takes the body out of the simulation: it keeps its pose and velocity, does
-/// not move, and (later) does not collide. Forces are cleared.
-Status body_disable(BodyId body);
+/// Adds the body to the simulation (enabled = true; velocity as it was when
+/// disabled) or takes it out (false): a disabled body keeps its pose and
+/// velocity, does not move and does not collide; its forces are cleared and
+/// the bodies it touched are woken. No change when already so.
+Status body_set_enabled(BodyId body, bool enabled);
+/// Deprecated (removed next release): body_set_enabled(body, true / false).
+[[deprecated("use body_set_enabled(body, true)")]] inline Status body_enable(BodyId body) {
+  return body_set_enabled(body, true);
+}
+[[deprecated("use body_set_enabled(body, false)")]] inline Status body_disable(BodyId body) {
+  return body_set_enabled(body, false);
+}
 
 /// True when a non-static body is awake; false for static bodies and an
 /// invalid handle.

@@ -527,7 +527,7 @@ Status apply_command(WorldId world, const Command& c, BodyId* out_created) {
     case CommandType::set_angular_velocity: return prefixed(c, body_set_angular_velocity(body, c.scalar));
     case CommandType::set_transform: return prefixed(c, body_set_transform(body, c.vector, c.rotation));
     case CommandType::set_awake: return prefixed(c, body_set_awake(body, c.flag));
-    case CommandType::set_enabled: return prefixed(c, c.flag ? body_enable(body) : body_disable(body));
+    case CommandType::set_enabled: return prefixed(c, body_set_enabled(body, c.flag));
     default: break;
   }
   return Status{StatusCode::invalid_argument,
@@ -596,7 +596,7 @@ void encode_command(ByteWriter& w, const Command& c) {
   }
 }
 
-bool decode_command(ByteReader& r, Command* out) {
+static bool read_command(ByteReader& r, Command* out) {
   *out = Command{};
   const size_t at = r.offset();
   const uint8_t type = r.u8("command type");
@@ -686,7 +686,7 @@ void encode_commands(ByteWriter& w, std::span<const Command> commands) {
   for (const Command& c : commands) encode_command(w, c);
 }
 
-bool decode_commands(ByteReader& r, std::vector<Command>* out) {
+static bool read_commands(ByteReader& r, std::vector<Command>* out) {
   out->clear();
   // Every command takes at least 5 bytes; commands are appended one by one
   // (not resized up front) so memory follows the bytes actually decoded.
@@ -694,10 +694,24 @@ bool decode_commands(ByteReader& r, std::vector<Command>* out) {
   if (!r.ok()) return false;
   for (uint32_t i = 0; i < n; ++i) {
     Command c;
-    if (!decode_command(r, &c)) return false;
+    if (!read_command(r, &c)) return false;
     out->push_back(std::move(c));
   }
   return true;
+}
+
+// The reader's error ("offset N: expected ...") as a Status.
+static Status reader_status(const ByteReader& r, const char* what) {
+  if (r.ok()) return Status{StatusCode::invalid_argument, "offset " + std::to_string(r.offset()) + ": malformed " + what};
+  return Status{StatusCode::invalid_argument, r.error()};
+}
+
+Status decode_command(ByteReader* reader, Command* out_command) {
+  return read_command(*reader, out_command) && reader->ok() ? Status{} : reader_status(*reader, "command");
+}
+
+Status decode_commands(ByteReader* reader, std::vector<Command>* out_commands) {
+  return read_commands(*reader, out_commands) && reader->ok() ? Status{} : reader_status(*reader, "command list");
 }
 
 }  // namespace tandem

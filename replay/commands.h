@@ -310,11 +310,22 @@ Status apply_command(WorldId world, const Command& command, BodyId* out_created 
 // --- encoding -----------------------------------------------------------------
 /// Appends the encoding of `command` (see the file comment).
 void encode_command(ByteWriter& writer, const Command& command);
-/// Reads one command. On malformed input returns false; the reader holds
-/// the error ("offset N: expected ...") and *out_command is unspecified.
-bool decode_command(ByteReader& reader, Command* out_command);
-/// Reads a u32 count then that many commands (each at least 1 byte).
-bool decode_commands(ByteReader& reader, std::vector<Command>* out_commands);
+/// Reads one command from *reader (advanced past it). On malformed input
+/// returns invalid_argument whose message is the reader's error ("offset N:
+/// expected ..."); the reader stays failed and *out_command is unspecified.
+Status decode_command(ByteReader* reader, Command* out_command);
+/// Reads a u32 count then that many commands (each at least 5 bytes) into
+/// *out_commands (replaced); errors as decode_command.
+Status decode_commands(ByteReader* reader, std::vector<Command>* out_commands);
+/// Deprecated (removed next release): the bool forms; use the Status ones.
+[[deprecated("use decode_command(&reader, out), which returns a Status")]] inline bool decode_command(
+    ByteReader& reader, Command* out_command) {
+  return decode_command(&reader, out_command).ok();
+}
+[[deprecated("use decode_commands(&reader, out), which returns a Status")]] inline bool decode_commands(
+    ByteReader& reader, std::vector<Command>* out_commands) {
+  return decode_commands(&reader, out_commands).ok();
+}
 /// Writes a u32 count then the commands.
 void encode_commands(ByteWriter& writer, std::span<const Command> commands);
 

@@ -54,6 +54,17 @@ uint32_t chunk_header_check(uint32_t type, uint32_t length) {
 
 Status error(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
 
+// A tick field: u64 in the file, int64_t in the API; above INT64_MAX is refused.
+int64_t read_tick(ByteReader& r, const char* what) {
+  const size_t at = r.offset();
+  const uint64_t v = r.u64(what);
+  if (r.ok() && v > static_cast<uint64_t>(INT64_MAX)) {
+    r.fail_at(at, std::string("expected ") + what + " 0…" + std::to_string(INT64_MAX) + ", got " + std::to_string(v));
+    return 0;
+  }
+  return static_cast<int64_t>(v);
+}
+
 // Re-bases a payload reader's message ("offset N: ...") onto file offsets.
 Status payload_error(const ByteReader& r, size_t payload_offset, const char* chunk) {
   const size_t at = payload_offset + r.error_offset();
@@ -77,9 +88,9 @@ void encode_header_payload(ByteWriter& w, const ReplayHeader& h) {
   w.bytes(h.scene_bytes.data(), n);
 }
 
-void encode_keyframe_payload(ByteWriter& w, uint64_t tick, std::span<const uint8_t> state,
+void encode_keyframe_payload(ByteWriter& w, int64_t tick, std::span<const uint8_t> state,
                              std::span<const uint8_t> game_state, uint32_t version) {
-  w.u64(tick);
+  w.u64(static_cast<uint64_t>(tick));  // ≥ 0: the writer and the reader check it
   w.u64(xxh64(state));
   w.u32(static_cast<uint32_t>(state.size()));
   w.bytes(state.data(), state.size());
@@ -93,7 +104,7 @@ void encode_tick_records(ByteWriter& w, std::span<const TickRecord> records, uin
   w.u32(static_cast<uint32_t>(records.size()));
   for (const TickRecord& t : records) {
     const bool game = version >= 2 && t.has_game_state;
-    w.u64(t.tick);
+    w.u64(static_cast<uint64_t>(t.tick));
     w.u8(static_cast<uint8_t>((t.has_hash ? 1 : 0) | (game ? 2 : 0)));
     encode_commands(w, t.commands);
     if (t.has_hash) w.u64(t.hash);
@@ -173,7 +184,7 @@ Status run_tick(WorldId world, const TickRecord& record, Q32 time_step, const Pa
   return Status{};
 }
 
-const Keyframe& Replay::keyframe_at_or_before(uint64_t tick) const {
+const Keyframe& Replay::keyframe_at_or_before(int64_t tick) const {
   static const Keyframe k_none{};
   if (keyframes.empty()) return k_none;
   size_t best = 0;
@@ -182,8 +193,9 @@ const Keyframe& Replay::keyframe_at_or_before(uint64_t tick) const {
   return keyframes[best];
 }
 
-Status Replay::seek(WorldId world, uint64_t tick, const PayloadHandler& payloads) const {
+Status Replay::seek(WorldId world, int64_t tick, const PayloadHandler& payloads) const {
   if (keyframes.empty()) return error("seek: the replay has no keyframe");
+  if (tick < 0) return error("seek: tick " + std::to_string(tick) + " is negative (ticks are 0…" + std::to_string(tick_count()) + ")");
   if (tick > tick_count())
     return error("seek: tick " + std::to_string(tick) + " is past the last recorded tick " +
                  std::to_string(tick_count()));
@@ -193,14 +205,14 @@ Status Replay::seek(WorldId world, uint64_t tick, const PayloadHandler& payloads
     s.message = "seek: keyframe at tick " + std::to_string(k.tick) + ": " + s.message;
     return s;
   }
-  for (uint64_t t = k.tick + 1; t <= tick; ++t) {
+  for (int64_t t = k.tick + 1; t <= tick; ++t) {
     s = run_tick(world, tick_record(t), header.time_step, payloads);
     if (!s.ok()) return s;
   }
   return Status{};
 }
 
-Result<WorldId> Replay::create_world_at(uint64_t tick, const PayloadHandler& payloads) const {
+Result<WorldId> Replay::create_world_at(int64_t tick, const PayloadHandler& payloads) const {
   Result<WorldId> r;
   if (keyframes.empty()) {
     r.status = error("create_world_at: the replay has no keyframe");
@@ -287,7 +299,7 @@ Status decode_header(std::span<const uint8_t> p, size_t base, uint32_t version, 
 
 Status decode_keyframe(std::span<const uint8_t> p, size_t base, uint32_t version, Keyframe* k) {
   ByteReader r(p);
-  k->tick = r.u64("keyframe tick");
+  k->tick = read_tick(r, "keyframe tick");
   k->hash = r.u64("keyframe state hash");
   const uint32_t n = r.read_count("state image byte count", 1);
   const size_t image_at = r.offset();
@@ -312,7 +324,7 @@ Status decode_keyframe(std::span<const uint8_t> p, size_t base, uint32_t version
   return Status{};
 }
 
-Status decode_ticks(std::span<const uint8_t> p, size_t base, uint32_t version, uint64_t first_tick,
+Status decode_ticks(std::span<const uint8_t> p, size_t base, uint32_t version, int64_t first_tick,
                     std::vector<TickRecord>* out) {
   ByteReader r(p);
   // A record takes at least 8 (tick) + 1 (flags) + 4 (command count) bytes.
@@ -320,12 +332,12 @@ Status decode_ticks(std::span<const uint8_t> p, size_t base, uint32_t version, u
   for (uint32_t i = 0; i < n && r.ok(); ++i) {
     TickRecord t;
     const size_t tick_at = r.offset();
-    t.tick = r.u64("tick");
+    t.tick = read_tick(r, "tick");
     if (r.ok() && t.tick != first_tick + i) {
       r.fail_at(tick_at, "expected tick " + std::to_string(first_tick + i) + ", got " + std::to_string(t.tick));
       break;
     }
-    r.set_context("tick", static_cast<int64_t>(t.tick));
+    r.set_context("tick", t.tick);
     const size_t flags_at = r.offset();
     const uint8_t flags = r.u8("flags");
     const uint8_t flags_max = version >= 2 ? 3 : 1;
@@ -333,7 +345,7 @@ Status decode_ticks(std::span<const uint8_t> p, size_t base, uint32_t version, u
       r.fail_at(flags_at, "expected tick flags 0.." + std::to_string(flags_max) + ", got " + std::to_string(flags));
     t.has_hash = (flags & 1) != 0;
     t.has_game_state = (flags & 2) != 0;
-    if (!decode_commands(r, &t.commands)) break;
+    if (!decode_commands(&r, &t.commands).ok()) break;
     if (t.has_hash) t.hash = r.u64("world hash");
     if (t.has_game_state) {
       const uint32_t g = r.read_count("game state byte count", 1);
@@ -375,7 +387,7 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
   // Chunks. The first two (HEAD, KEYF at tick 0) are the header: a cut or a
   // fault there is an error; after them a cut is a warning.
   int index = 0;
-  uint64_t last_tick = 0;
+  int64_t last_tick = 0;
   auto cut = [&](size_t at, const std::string& why) {
     info.truncated = true;
     info.truncated_at = at;
@@ -457,13 +469,13 @@ Status read_replay(std::span<const uint8_t> data, Replay* out, ReplayReadInfo* i
     } else if (type == k_chunk_tick) {
       Status s = decode_ticks(payload, payload_at, version, last_tick + 1, &out->ticks);
       if (!s.ok()) return s;
-      last_tick = out->ticks.size();
+      last_tick = static_cast<int64_t>(out->ticks.size());
     } else {  // END
       ByteReader e(payload);
       const uint64_t count = e.u64("tick count");
       if (e.ok() && !e.at_end()) e.fail("expected the end of the END chunk");
       if (!e.ok()) return payload_error(e, payload_at, "END");
-      if (count != last_tick)
+      if (count != static_cast<uint64_t>(last_tick))
         return error("offset " + std::to_string(payload_at) + ": END chunk says " + std::to_string(count) +
                      " ticks, the file holds " + std::to_string(last_tick));
       info.closed = true;
@@ -500,8 +512,8 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
   append_chunk(&out, k_chunk_head, payload);
   size_t next_key = 0;
   size_t t = 0;
-  auto keyframes_up_to = [&](uint64_t tick) {
-    while (next_key < replay.keyframes.size() && replay.keyframes[next_key].tick <= tick) {
+  auto keyframes_up_to = [&](size_t tick) {
+    while (next_key < replay.keyframes.size() && replay.keyframes[next_key].tick <= static_cast<int64_t>(tick)) {
       payload.clear();
       ByteWriter w(&payload);
       encode_keyframe_payload(w, replay.keyframes[next_key].tick, replay.keyframes[next_key].state,
@@ -516,7 +528,7 @@ std::vector<uint8_t> encode_replay(const Replay& replay, uint32_t ticks_per_chun
     if (end > replay.ticks.size()) end = replay.ticks.size();
     // A chunk never spans a keyframe.
     for (size_t k = next_key; k < replay.keyframes.size(); ++k)
-      if (replay.keyframes[k].tick > t && replay.keyframes[k].tick < end) {
+      if (replay.keyframes[k].tick > static_cast<int64_t>(t) && replay.keyframes[k].tick < static_cast<int64_t>(end)) {
         end = static_cast<size_t>(replay.keyframes[k].tick);
         break;
       }
@@ -624,7 +636,7 @@ Status ReplayWriter::flush() {
   return Status{};
 }
 
-Status ReplayWriter::append_keyframe(uint64_t tick, std::span<const uint8_t> state,
+Status ReplayWriter::append_keyframe(int64_t tick, std::span<const uint8_t> state,
                                      std::span<const uint8_t> game_state) {
   if (!header_written_ || finished_) return error("replay writer: append_keyframe before write_header or after finish");
   if (tick != ticks_)
@@ -646,7 +658,7 @@ Status ReplayWriter::finish() {
   if (!header_written_) return error("replay writer: finish before write_header");
   Status s = flush();
   if (!s.ok()) return s;
-  s = write_chunk(k_chunk_end, end_payload(ticks_));
+  s = write_chunk(k_chunk_end, end_payload(static_cast<uint64_t>(ticks_)));  // ≥ 0
   if (!s.ok()) return s;
   finished_ = true;
   if (file_ != nullptr) {
@@ -701,8 +713,14 @@ Status ReplayRecorder::submit(const Command& command) {
   return apply_command(world_, command);
 }
 
-void ReplayRecorder::submit_payload(std::vector<uint8_t> payload) {
+Status ReplayRecorder::submit_payload(std::vector<uint8_t> payload) {
+  if (!begun_) return error("ReplayRecorder::submit_payload: begin() first");
+  if (payload.size() > k_max_user_payload_bytes) {
+    return error("ReplayRecorder::submit_payload: payload of " + std::to_string(payload.size()) +
+                 " bytes, expected at most " + std::to_string(k_max_user_payload_bytes));
+  }
   current_.commands.push_back(make_user_input(std::move(payload)));
+  return Status{};
 }
 
 StepResult ReplayRecorder::step() {
@@ -718,11 +736,11 @@ StepResult ReplayRecorder::step() {
     current_.hash = world_state_hash(world_);
     last_hash_ = current_.hash;
   }
-  const uint64_t tick = current_.tick;
+  const int64_t tick = current_.tick;
   Status s = writer_.append_tick(std::move(current_));
   current_ = TickRecord{};
   current_.tick = tick + 1;
-  if (s.ok() && options_.keyframe_interval != 0 && tick % options_.keyframe_interval == 0) {
+  if (s.ok() && options_.keyframe_interval != 0 && tick % int64_t{options_.keyframe_interval} == 0) {
     std::vector<uint8_t> state;
     s = encode_world_state(world_, &state);
     if (s.ok()) s = writer_.append_keyframe(tick, state);

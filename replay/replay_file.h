@@ -2,7 +2,10 @@
 // (initial state + every tick's inputs + a hash after every tick), written
 // append-only so that a crash loses nothing already flushed.
 //
-// TICKS. Tick t (t = 1, 2, ...) is: apply tick t's commands to the state
+// TICKS. Tick numbers are int64_t in this API, as everywhere in Tandem; the
+// file stores them as u64, and a tick above INT64_MAX read from a file, or a
+// negative one passed in, is refused with a Status naming it. Tick t
+// (t = 1, 2, ...) is: apply tick t's commands to the state
 // after tick t − 1, then world_step(world, time_step); the recorded hash is
 // world_state_hash() after that step. Tick 0 is the initial state (the first
 // keyframe). A keyframe "at tick k" is the world snapshot after tick k.
@@ -126,7 +129,7 @@ struct ReplayHeader {
 
 /// One tick's inputs and the hash after it.
 struct TickRecord {
-  uint64_t tick = 0;              ///< 1-based
+  int64_t tick = 0;               ///< 1-based
   std::vector<Command> commands;  ///< in submission order (user_input commands carry game payloads)
   bool has_hash = false;
   uint64_t hash = 0;              ///< world_state_hash after the step
@@ -136,7 +139,7 @@ struct TickRecord {
 
 /// A world snapshot after `tick` ticks.
 struct Keyframe {
-  uint64_t tick = 0;
+  int64_t tick = 0;
   uint64_t hash = 0;           ///< XXH3-64 of the bytes of `state` (not world_state_hash)
   std::vector<uint8_t> state;  ///< state image (replay/state.h)
   std::vector<uint8_t> game_state;  ///< format 2: the game's own state after `tick` (empty: none)
@@ -145,7 +148,7 @@ struct Keyframe {
 /// Turns a game's opaque payload (recorded at `tick`) into engine commands;
 /// appends them to *out_commands. A non-ok status stops the run.
 using PayloadHandler =
-    std::function<Status(uint64_t tick, std::span<const uint8_t> payload, std::vector<Command>* out_commands)>;
+    std::function<Status(int64_t tick, std::span<const uint8_t> payload, std::vector<Command>* out_commands)>;
 
 /// Applies one tick's commands (user_input ones through `payloads` when set,
 /// skipped otherwise) and steps the world by `time_step`. A refused command
@@ -163,25 +166,26 @@ struct Replay {
   std::vector<TickRecord> ticks;    ///< ticks[i].tick == i + 1
 
   /// Number of ticks recorded.
-  uint64_t tick_count() const { return ticks.size(); }
+  int64_t tick_count() const { return static_cast<int64_t>(ticks.size()); }
   /// The record of `tick` (1 ≤ tick ≤ tick_count(); not checked).
-  const TickRecord& tick_record(uint64_t tick) const { return ticks[static_cast<size_t>(tick - 1)]; }
+  const TickRecord& tick_record(int64_t tick) const { return ticks[static_cast<size_t>(tick - 1)]; }
   /// The last keyframe with tick ≤ `tick` (keyframes[0] if none is; an empty
   /// keyframe with no state when there are no keyframes).
-  const Keyframe& keyframe_at_or_before(uint64_t tick) const;
+  const Keyframe& keyframe_at_or_before(int64_t tick) const;
   /// Puts `world` into the state after `tick` ticks: restores the nearest
-  /// keyframe ≤ tick, then runs the ticks after it (run_tick). Refuses tick >
-  /// tick_count() and a world that cannot be restored.
-  Status seek(WorldId world, uint64_t tick, const PayloadHandler& payloads = {}) const;
+  /// keyframe ≤ tick, then runs the ticks after it (run_tick). Refuses a
+  /// tick outside 0…tick_count() (naming it) and a world that cannot be
+  /// restored.
+  Status seek(WorldId world, int64_t tick, const PayloadHandler& payloads = {}) const;
   /// A new world in the state after `tick` ticks (seek on a fresh world).
-  Result<WorldId> create_world_at(uint64_t tick, const PayloadHandler& payloads = {}) const;
+  Result<WorldId> create_world_at(int64_t tick, const PayloadHandler& payloads = {}) const;
 };
 
 /// What read_replay found besides the replay itself.
 struct ReplayReadInfo {
   bool truncated = false;       ///< the file ends without an END chunk
   size_t truncated_at = 0;      ///< byte offset of the first byte not read (the cut)
-  uint64_t last_complete_tick = 0;
+  int64_t last_complete_tick = 0;
   bool closed = false;          ///< an END chunk was read
   std::string warning;          ///< "file cut at byte 1234 after tick 56 (...)"; empty when whole
   uint64_t chunk_count = 0;
@@ -231,7 +235,7 @@ class ReplayWriter {
   Status append_tick(TickRecord record);
   /// Writes pending ticks, then a keyframe at `tick` (= ticks appended), with
   /// the game's own state then (may be empty).
-  Status append_keyframe(uint64_t tick, std::span<const uint8_t> state, std::span<const uint8_t> game_state = {});
+  Status append_keyframe(int64_t tick, std::span<const uint8_t> state, std::span<const uint8_t> game_state = {});
   /// Writes pending ticks as one chunk and flushes the file.
   Status flush();
   /// Flushes, writes END and closes the file. Later appends are refused.
@@ -239,7 +243,7 @@ class ReplayWriter {
   /// The bytes written so far in memory mode (empty in file mode).
   const std::vector<uint8_t>& memory() const { return memory_; }
   /// Ticks appended so far.
-  uint64_t tick_count() const { return ticks_; }
+  int64_t tick_count() const { return ticks_; }
 
  private:
   Status write_chunk(uint32_t type, const std::vector<uint8_t>& payload);
@@ -253,7 +257,7 @@ class ReplayWriter {
   ReplayWriterOptions options_;
   std::vector<uint8_t> memory_;
   std::vector<TickRecord> pending_;
-  uint64_t ticks_ = 0;
+  int64_t ticks_ = 0;
   uint64_t bytes_written_ = 0;
 };
 
@@ -282,7 +286,10 @@ class ReplayRecorder {
   /// (also when refused: the refusal replays identically). Returns apply_command's status.
   Status submit(const Command& command);
   /// Records an opaque user payload for the current tick (not applied).
-  void submit_payload(std::vector<uint8_t> payload);
+  /// Refused before begin() and above k_max_user_payload_bytes (the file
+  /// could not be read back); nothing is recorded then. (Returned nothing
+  /// before this release.)
+  Status submit_payload(std::vector<uint8_t> payload);
   /// Steps the world, records the tick (and its hash), writes a keyframe when due.
   StepResult step();
   /// Flushes, writes END, closes.
@@ -290,7 +297,7 @@ class ReplayRecorder {
   /// The world being recorded.
   WorldId world() const { return world_; }
   /// Ticks recorded.
-  uint64_t tick_count() const { return writer_.tick_count(); }
+  int64_t tick_count() const { return writer_.tick_count(); }
   /// The bytes written in memory mode.
   const std::vector<uint8_t>& memory() const { return writer_.memory(); }
   /// The hash recorded after the last step (0 before the first, or without hashes).

@@ -9,14 +9,9 @@
 // legitimately send lies within 2 · (30 + 30) + 2 ticks of the confirmed tick;
 // remote inputs further ahead than k_accept_ahead are refused.
 //
-// Redundancy: each input packet repeats the sender's inputs from the oldest
-// tick the receiver has not acknowledged (≤ 32 per packet), and the confirmed
-// hashes likewise, so any loss pattern is repaired by the next packets that
-// get through, oldest first. The sender's own inputs are kept for
-// input_history_ticks (default 3600), beyond the ring, so an endpoint far
-// behind (a spectator cut off for seconds) still gets every input; one
-// further behind than that is dropped (a spectator) or stops the session (a
-// player, which the bounds above rule out).
+// Packets (sending, receiving, resend history, body-hash requests) are in
+// session_net.cpp; this file owns setup, the input rings, simulation with the
+// snapshot ring and rollbacks, frames, stopping and artifacts.
 #include "replay/session.h"
 
 #include <algorithm>
@@ -33,7 +28,6 @@ namespace tandem {
 
 namespace {
 
-constexpr uint64_t k_accept_ahead = 192;  // < k_session_ring_ticks − 32
 constexpr uint32_t k_sync_samples = 16;
 constexpr int64_t k_sync_min_frames = 2;
 constexpr uint32_t k_spectator_catch_up = 4;  // most ticks a spectator steps in one frame
@@ -242,7 +236,7 @@ bool Session::simulate(uint64_t tick) {
   }
   SessionTickInputs in{config_.player_count, n, tick_inputs_.data()};
   commands_.clear();
-  Status s = callbacks_.make_commands(tick, in, world_, &commands_);
+  Status s = callbacks_.make_commands(static_cast<int64_t>(tick), in, world_, &commands_);
   if (!s.ok()) {
     stop(SessionState::error, "tick " + std::to_string(tick) + ": make_commands failed: " + s.message);
     return false;
@@ -255,7 +249,7 @@ bool Session::simulate(uint64_t tick) {
     stop(SessionState::error, "tick " + std::to_string(tick) + ": step refused: " + step.status.message);
     return false;
   }
-  if (callbacks_.after_step) callbacks_.after_step(tick, world_);
+  if (callbacks_.after_step) callbacks_.after_step(static_cast<int64_t>(tick), world_);
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
   s = rollback_save(world_, &snap_world_[h]);
   if (s.ok() && recording_ && config_.keyframe_interval != 0 && tick % config_.keyframe_interval == 0) {
@@ -314,7 +308,7 @@ void Session::confirm() {
     if (recording_) {
       const size_t h = static_cast<size_t>(t % config_.history_ticks);
       TickRecord rec;
-      rec.tick = t;
+      rec.tick = static_cast<int64_t>(t);
       std::vector<uint8_t> all(size_t{config_.player_count} * config_.input_bytes);
       for (uint32_t p = 0; p < config_.player_count; ++p) {
         std::memcpy(all.data() + size_t{p} * config_.input_bytes, input_at(p, t), config_.input_bytes);
@@ -330,7 +324,7 @@ void Session::confirm() {
       }
       Status s = writer_.append_tick(std::move(rec));
       if (s.ok() && config_.keyframe_interval != 0 && t % config_.keyframe_interval == 0) {
-        s = writer_.append_keyframe(t, snap_keyframe_[h], snap_game_[h]);
+        s = writer_.append_keyframe(static_cast<int64_t>(t), snap_keyframe_[h], snap_game_[h]);
       }
       if (!s.ok()) {
         stop(SessionState::error, "recording tick " + std::to_string(t) + ": " + s.message);
@@ -373,7 +367,7 @@ bool Session::begin_frame() {
       if (q == config_.local_endpoint) continue;
       if (stats_.frames - last_heard_frame_[q] > config_.disconnect_timeout_frames) {
         stop_.endpoint = q;
-        stop_.last_heard_tick = remote_tick_[q];
+        stop_.last_heard_tick = static_cast<int64_t>(remote_tick_[q]);
         stop(SessionState::peer_left, "player " + std::to_string(q) + " silent for " +
                                           std::to_string(config_.disconnect_timeout_frames) + " frames (last tick heard " +
                                           std::to_string(remote_tick_[q]) + ", local tick " + std::to_string(current_) + ")");
@@ -464,216 +458,19 @@ int32_t Session::frames_ahead() const {
   return static_cast<int32_t>(std::min<int64_t>(ahead, 1000));
 }
 
-uint64_t Session::remote_confirmed_through() const {
+int64_t Session::remote_confirmed_through() const {
   uint64_t m = UINT64_MAX;
   for (uint32_t q = 0; q < endpoint_count(); ++q) {
     if (q != config_.local_endpoint && gone_[q] == 0) m = std::min(m, remote_hash_through_[q]);
   }
-  return m == UINT64_MAX ? 0 : m;
+  return m == UINT64_MAX ? 0 : static_cast<int64_t>(m);
 }
 
-uint64_t Session::confirmed_hash(uint64_t tick) const {
+uint64_t Session::confirmed_hash(int64_t signed_tick) const {
+  if (signed_tick < 0) return 0;
+  const uint64_t tick = static_cast<uint64_t>(signed_tick);
   if (tick > confirmed_ || hash_tick_.empty() || hash_tick_[ring(tick)] != tick) return 0;
   return hash_[ring(tick)];
-}
-
-// --- sending --------------------------------------------------------------------
-
-void Session::send_raw(uint32_t endpoint, size_t size) {
-  if (size == 0) return;
-  ++stats_.packets_sent;
-  stats_.bytes_sent += size;
-  callbacks_.send(endpoint, std::span<const uint8_t>(out_buffer_.data(), size));
-}
-
-void Session::send_packets() {
-  SessionPacket& p = packet_out_;
-  const bool notices = stop_.state == SessionState::desynced && desync_notices_left_ > 0;
-  if (stop_.state != SessionState::running && !notices) return;
-  for (uint32_t q = 0; q < endpoint_count(); ++q) {
-    if (q == config_.local_endpoint || gone_[q] != 0) continue;
-    p.session_id = config_.session_id;
-    p.sender = static_cast<uint8_t>(config_.local_endpoint);
-    p.sequence = ++sequence_out_[q];
-    if (notices) {
-      p.type = SessionPacketType::desync;
-      p.tick = static_cast<uint32_t>(desync_notice_tick_);
-      p.hash = desync_notice_hash_;
-      send_raw(q, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
-      continue;
-    }
-    p.type = SessionPacketType::input;
-    p.sender_tick = static_cast<uint32_t>(current_);
-    p.advantage = static_cast<int32_t>(std::clamp<int64_t>(
-        static_cast<int64_t>(current_) - static_cast<int64_t>(remote_tick_[q]), INT32_MIN, INT32_MAX));
-    p.input_ack = q < config_.player_count ? static_cast<uint32_t>(contiguous_[q]) : 0;
-    p.hash_ack = static_cast<uint32_t>(remote_hash_through_[q]);
-    p.input_count = 0;
-    p.input_bytes = static_cast<uint8_t>(config_.input_bytes);
-    p.first_input_tick = 0;
-    if (!is_spectator()) {
-      // Oldest unacknowledged first, so a receiver behind by more than one
-      // packet's worth still fills its gap, from the local input history:
-      // players stay within the ring of each other (file comment), but a
-      // spectator that heard nothing for seconds may be far behind.
-      const uint64_t first = std::max<uint64_t>(input_ack_from_[q] + 1, config_.input_delay + 1);
-      if (first <= last_local_tick_ && last_local_tick_ - first >= config_.input_history_ticks) {
-        const std::string why = "endpoint " + std::to_string(q) + " needs our inputs from tick " +
-                                std::to_string(first) + ", older than the " +
-                                std::to_string(config_.input_history_ticks) + " ticks kept (input_history_ticks)";
-        if (q < config_.player_count) {
-          stop(SessionState::error, why);
-          return;
-        }
-        gone_[q] = 1;  // a spectator: no longer sent to
-        ++stats_.spectators_dropped;
-        stats_.last_rejection = why;
-        continue;
-      }
-      if (first <= last_local_tick_) {
-        p.first_input_tick = static_cast<uint32_t>(first);
-        p.input_count = static_cast<uint8_t>(std::min<uint64_t>(last_local_tick_ - first + 1, k_packet_max_inputs));
-        for (uint32_t i = 0; i < p.input_count; ++i) {
-          const size_t slot = static_cast<size_t>((first + i) % config_.input_history_ticks);
-          std::memcpy(p.inputs.data() + size_t{i} * config_.input_bytes,
-                      local_history_.data() + slot * config_.input_bytes, config_.input_bytes);
-        }
-      }
-    }
-    p.hash_count = 0;
-    p.first_hash_tick = 0;
-    // Oldest unacknowledged first; hashes that left the ring are skipped (the
-    // receiver sees the gap and skips those checks, counting them).
-    uint64_t hfirst = hash_ack_from_[q] + 1;
-    if (hfirst <= confirmed_ && confirmed_ - hfirst >= k_session_ring_ticks - 8) hfirst = confirmed_ - k_packet_max_hashes + 1;
-    if (hfirst <= confirmed_) {
-      p.first_hash_tick = static_cast<uint32_t>(hfirst);
-      p.hash_count = static_cast<uint8_t>(std::min<uint64_t>(confirmed_ - hfirst + 1, k_packet_max_hashes));
-      for (uint32_t i = 0; i < p.hash_count; ++i) p.hashes[i] = hash_[ring(hfirst + i)];
-    }
-    send_raw(q, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
-  }
-  if (notices) --desync_notices_left_;
-}
-
-// --- receiving ------------------------------------------------------------------
-
-void Session::reject(const std::string& why) {
-  ++stats_.packets_rejected;
-  stats_.last_rejection = why;
-}
-
-void Session::receive(uint32_t from, std::span<const uint8_t> data) {
-  if (stop_.state == SessionState::idle) return;
-  ++stats_.packets_received;
-  stats_.bytes_received += data.size();
-  if (from >= endpoint_count() || from == config_.local_endpoint) {
-    reject("packet from endpoint " + std::to_string(from) + ", expected another of 0…" +
-           std::to_string(endpoint_count() - 1));
-    return;
-  }
-  SessionPacketLimits limits;
-  limits.endpoint_count = endpoint_count();
-  limits.input_bytes = config_.input_bytes;
-  SessionPacket& p = packet_in_;
-  const Status s = decode_session_packet(data.data(), data.size(), limits, &p);
-  if (!s.ok()) {
-    reject("from endpoint " + std::to_string(from) + ": " + s.message);
-    return;
-  }
-  if (p.session_id != config_.session_id) {
-    reject("from endpoint " + std::to_string(from) + ": session id " + std::to_string(p.session_id) + ", expected " +
-           std::to_string(config_.session_id));
-    return;
-  }
-  if (p.sender != from) {
-    reject("packet claims endpoint " + std::to_string(p.sender) + " but arrived from endpoint " + std::to_string(from));
-    return;
-  }
-  last_heard_frame_[from] = stats_.frames;
-  const bool fresh = p.sequence > last_sequence_in_[from];
-  if (fresh) {
-    last_sequence_in_[from] = p.sequence;
-  } else {
-    ++stats_.packets_stale;
-  }
-  switch (p.type) {
-    case SessionPacketType::input:
-      if (fresh) remote_advantage_[from] = p.advantage;
-      handle_input(from, p);
-      break;
-    case SessionPacketType::desync:
-      if (stop_.state == SessionState::running) {
-        const uint64_t t = p.tick;
-        const uint64_t mine = hash_tick_[ring(t)] == t ? hash_[ring(t)] : 0;
-        desync(from, t, mine, p.hash, true);
-      }
-      break;
-    case SessionPacketType::body_hash_request:
-      handle_body_request(from, p);
-      break;
-    case SessionPacketType::body_hash_reply:
-      remote_body_hashes_.endpoint = from;
-      remote_body_hashes_.tick = p.tick;
-      remote_body_hashes_.first_body = p.first_body;
-      remote_body_hashes_.hashes.resize(p.body_count);
-      for (uint32_t i = 0; i < p.body_count; ++i) remote_body_hashes_.hashes[i] = p.body_hash(i);
-      break;
-  }
-}
-
-void Session::handle_input(uint32_t from, const SessionPacket& p) {
-  remote_tick_[from] = std::max<uint64_t>(remote_tick_[from], p.sender_tick);
-  if (p.input_ack <= last_local_tick_) input_ack_from_[from] = std::max<uint64_t>(input_ack_from_[from], p.input_ack);
-  if (p.hash_ack <= confirmed_) hash_ack_from_[from] = std::max<uint64_t>(hash_ack_from_[from], p.hash_ack);
-  if (p.input_count != 0) {
-    if (from >= config_.player_count) {
-      reject("spectator endpoint " + std::to_string(from) + " sent inputs");
-      return;
-    }
-    for (uint32_t i = 0; i < p.input_count; ++i) {
-      const uint64_t t = uint64_t{p.first_input_tick} + i;
-      const uint8_t* bytes = p.input(i).data();
-      if (t > confirmed_ + k_accept_ahead) {
-        // A sender starts at our oldest missing input, so only a first tick
-        // past the window is wrong; later ones are kept for the next packets
-        // (a spectator far behind gets 32 at a time but may hold fewer).
-        if (i != 0) break;
-        reject("player " + std::to_string(from) + " input for tick " + std::to_string(t) + ", more than " +
-               std::to_string(k_accept_ahead) + " ahead of confirmed tick " + std::to_string(confirmed_));
-        return;
-      }
-      if (t <= contiguous_[from] || input_known(from, t)) {
-        if (input_known(from, t) && std::memcmp(input_at(from, t), bytes, config_.input_bytes) != 0) {
-          reject("player " + std::to_string(from) + " sent a different input for tick " + std::to_string(t));
-          return;
-        }
-        continue;
-      }
-      store_input(from, t, bytes);
-      const size_t slot = size_t{from} * k_session_ring_ticks + ring(t);
-      if (t <= current_ && used_tick_[slot] == t &&
-          std::memcmp(used_.data() + slot * config_.input_bytes, bytes, config_.input_bytes) != 0) {
-        if (pending_rollback_ == 0 || t < pending_rollback_) pending_rollback_ = t;
-      }
-    }
-  }
-  uint64_t& through = remote_hash_through_[from];
-  if (p.hash_count != 0 && p.first_hash_tick > through + 1) {
-    // The sender acknowledged-through is never ahead of ours, so a gap means
-    // it could not resend those hashes (they left its ring): skip them.
-    stats_.hashes_skipped += p.first_hash_tick - 1 - through;
-    through = p.first_hash_tick - 1;
-    hash_checked_through_[from] = std::max(hash_checked_through_[from], through);
-  }
-  for (uint32_t i = 0; i < p.hash_count; ++i) {
-    const uint64_t t = uint64_t{p.first_hash_tick} + i;
-    if (t <= hash_checked_through_[from] || t >= hash_checked_through_[from] + k_session_ring_ticks) continue;
-    const size_t r = size_t{from} * k_session_ring_ticks + ring(t);
-    remote_hash_[r] = p.hashes[i];
-    remote_hash_tick_[r] = t;
-  }
-  while (remote_hash_tick_[size_t{from} * k_session_ring_ticks + ring(through + 1)] == through + 1) ++through;
 }
 
 // --- stopping and artifacts ---------------------------------------------------------
@@ -681,20 +478,20 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
 void Session::stop(SessionState state, const std::string& message) {
   if (stop_.state != SessionState::running) return;
   stop_.state = state;
-  stop_.tick = state == SessionState::desynced ? stop_.tick : current_;
+  stop_.tick = state == SessionState::desynced ? stop_.tick : static_cast<int64_t>(current_);
   stop_.message = message;
 }
 
 void Session::desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint64_t remote_hash, bool reported) {
   if (stop_.state != SessionState::running) return;
-  stop_.tick = tick;
+  stop_.tick = static_cast<int64_t>(tick);
   stop_.endpoint = endpoint;
   stop_.local_hash = local_hash;
   stop_.remote_hash = remote_hash;
   std::string message = reported ? "endpoint " + std::to_string(endpoint) + " reported a desync at tick " + std::to_string(tick)
                                  : "desync at tick " + std::to_string(tick) + " with endpoint " + std::to_string(endpoint);
   message += ": local hash " + std::to_string(local_hash) + ", remote " + std::to_string(remote_hash);
-  const Status s = state_image(tick, &desync_image_);
+  const Status s = state_image(static_cast<int64_t>(tick), &desync_image_);
   desync_image_tick_ = s.ok() ? tick : 0;
   if (!s.ok()) message += " (state image of that tick no longer kept: " + s.message + ")";
   stop(SessionState::desynced, message);
@@ -704,8 +501,10 @@ void Session::desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint
   send_packets();
 }
 
-Status Session::ring_slot(uint64_t tick, size_t* slot) const {
+Status Session::ring_slot(int64_t signed_tick, size_t* slot) const {
   if (snap_tick_.empty()) return bad("session not started");
+  if (signed_tick < 0) return bad("tick " + std::to_string(signed_tick) + " is negative");
+  const uint64_t tick = static_cast<uint64_t>(signed_tick);
   const size_t h = static_cast<size_t>(tick % config_.history_ticks);
   if (tick > current_ || snap_tick_[h] != tick) {
     return bad("tick " + std::to_string(tick) + " is not in the snapshot ring (ticks " +
@@ -716,7 +515,7 @@ Status Session::ring_slot(uint64_t tick, size_t* slot) const {
   return {};
 }
 
-Status Session::state_image(uint64_t tick, std::vector<uint8_t>* out) const {
+Status Session::state_image(int64_t tick, std::vector<uint8_t>* out) const {
   size_t h = 0;
   const Status kept = ring_slot(tick, &h);
   if (!kept.ok()) return kept;
@@ -749,7 +548,7 @@ Status Session::write_artifacts(const std::string& prefix) {
   }
   if (stop_.state == SessionState::desynced && desync_image_tick_ != 0) return write_file(prefix + ".state", desync_image_);
   std::vector<uint8_t> image;
-  const Status s = state_image(confirmed_, &image);
+  const Status s = state_image(static_cast<int64_t>(confirmed_), &image);
   if (!s.ok()) return s;
   return write_file(prefix + ".state", image);
 }
@@ -761,57 +560,9 @@ void Session::peer_disconnected(uint32_t endpoint) {
     return;
   }
   stop_.endpoint = endpoint;
-  stop_.last_heard_tick = remote_tick_[endpoint];
+  stop_.last_heard_tick = static_cast<int64_t>(remote_tick_[endpoint]);
   stop(SessionState::peer_left, "player " + std::to_string(endpoint) + " disconnected (last tick heard " +
                                     std::to_string(remote_tick_[endpoint]) + ", local tick " + std::to_string(current_) + ")");
-}
-
-// --- per-body hashes ----------------------------------------------------------------
-
-Status Session::local_body_hashes(uint64_t tick, std::vector<uint64_t>* out) const {
-  size_t h = 0;
-  const Status kept = ring_slot(tick, &h);
-  if (!kept.ok()) return kept;
-  Result<WorldId> w = create_world(default_world_def());
-  if (!w.ok()) return w.status;
-  Status s = rollback_restore(w.value, snap_world_[h]);
-  if (s.ok()) s = world_body_hashes(w.value, out);
-  (void)destroy_world(w.value);
-  return s;
-}
-
-void Session::request_body_hashes(uint32_t endpoint, uint64_t tick, uint32_t first_body, uint32_t count) {
-  if (endpoint >= endpoint_count() || endpoint == config_.local_endpoint || stop_.state == SessionState::idle) return;
-  SessionPacket& p = packet_out_;
-  p.type = SessionPacketType::body_hash_request;
-  p.session_id = config_.session_id;
-  p.sender = static_cast<uint8_t>(config_.local_endpoint);
-  p.sequence = ++sequence_out_[endpoint];
-  p.tick = static_cast<uint32_t>(tick);
-  p.first_body = first_body;
-  p.body_count = std::min(count, k_packet_max_body_hashes);
-  send_raw(endpoint, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
-}
-
-void Session::handle_body_request(uint32_t from, const SessionPacket& req) {
-  std::vector<uint64_t>& all = body_hash_scratch_;
-  uint32_t count = 0;
-  if (local_body_hashes(req.tick, &all).ok() && req.first_body < all.size()) {
-    count = static_cast<uint32_t>(std::min<size_t>(req.body_count, all.size() - req.first_body));
-  }
-  body_hash_bytes_.clear();
-  ByteWriter w(&body_hash_bytes_);
-  for (uint32_t i = 0; i < count; ++i) w.u64(all[req.first_body + i]);
-  SessionPacket& p = packet_out_;
-  p.type = SessionPacketType::body_hash_reply;
-  p.session_id = config_.session_id;
-  p.sender = static_cast<uint8_t>(config_.local_endpoint);
-  p.sequence = ++sequence_out_[from];
-  p.tick = req.tick;
-  p.first_body = req.first_body;
-  p.body_count = count;
-  p.body_hash_bytes = std::span<const uint8_t>(body_hash_bytes_.data(), body_hash_bytes_.size());
-  send_raw(from, encode_session_packet(p, out_buffer_.data(), out_buffer_.size()));
 }
 
 }  // namespace tandem

@@ -7,6 +7,9 @@
 // TICKS are numbered as in a replay (replay_file.h): tick t applies the
 // commands made from tick t's inputs to the state after tick t − 1, then
 // steps. Ticks 1…K (K = input delay) use all-zero inputs for every player.
+// Tick numbers are int64_t in this API (as everywhere in Tandem); packets
+// carry them as u32 (session_packet.h), and a tick outside that range is
+// refused by name, never truncated.
 //
 // INPUTS. Each player supplies `input_bytes` opaque bytes per frame; the
 // input given to the advance_frame() that simulates tick t is scheduled for
@@ -139,10 +142,10 @@ struct SessionCallbacks {
   /// Appends the engine commands of `tick` made from `inputs` (the vector is
   /// cleared before the call). Must be deterministic. A non-ok status stops
   /// the session (state error).
-  std::function<Status(uint64_t tick, const SessionTickInputs& inputs, WorldId world, std::vector<Command>* out)>
+  std::function<Status(int64_t tick, const SessionTickInputs& inputs, WorldId world, std::vector<Command>* out)>
       make_commands;
   /// Game logic after the step of `tick` (scores, timers). Deterministic.
-  std::function<void(uint64_t tick, WorldId world)> after_step;
+  std::function<void(int64_t tick, WorldId world)> after_step;
   /// Serialises the game state beyond the world (replace *out).
   std::function<void(std::vector<uint8_t>* out)> save_game;
   /// Restores what save_game wrote.
@@ -158,11 +161,11 @@ const char* session_state_name(SessionState state);
 /// Why a session stopped (state != running).
 struct SessionStop {
   SessionState state = SessionState::idle;
-  uint64_t tick = 0;          ///< desynced: the first mismatching tick; peer_left: the local tick then
+  int64_t tick = 0;           ///< desynced: the first mismatching tick; peer_left: the local tick then
   uint32_t endpoint = 0;      ///< the endpoint whose hash differed / that left / that reported the desync
   uint64_t local_hash = 0;    ///< desynced: this peer's hash of `tick`
   uint64_t remote_hash = 0;   ///< desynced: the remote hash of `tick`
-  uint64_t last_heard_tick = 0;  ///< peer_left: the endpoint's last reported tick
+  int64_t last_heard_tick = 0;   ///< peer_left: the endpoint's last reported tick
   std::string message;        ///< one line
 };
 
@@ -232,15 +235,15 @@ class Session {
   int32_t frames_ahead() const;
 
   /// Ticks simulated (the world is in the state after this tick).
-  uint64_t current_tick() const { return current_; }
+  int64_t current_tick() const { return static_cast<int64_t>(current_); }
   /// Last tick simulated with every player's real input.
-  uint64_t confirmed_tick() const { return confirmed_; }
+  int64_t confirmed_tick() const { return static_cast<int64_t>(confirmed_); }
   /// The hash (world, mixed with the game state) of a confirmed tick still in
-  /// the ring; 0 otherwise.
-  uint64_t confirmed_hash(uint64_t tick) const;
+  /// the ring; 0 otherwise (a negative tick included).
+  uint64_t confirmed_hash(int64_t tick) const;
   /// The lowest tick through which every other endpoint still connected has
   /// sent its confirmed hashes (so they have confirmed at least this far).
-  uint64_t remote_confirmed_through() const;
+  int64_t remote_confirmed_through() const;
   /// world_state_hash of the start state.
   uint64_t start_hash() const { return start_hash_; }
   SessionState state() const { return stop_.state; }
@@ -259,26 +262,29 @@ class Session {
   /// manifold geometry of contacts between simulated bodies reads as zero
   /// (the compact image omits it), alike on every peer, so `tandem diff` of
   /// two peers' images names the first state that really differs. Its
-  /// world_state_hash is therefore not the tick's exchanged hash.
-  Status state_image(uint64_t tick, std::vector<uint8_t>* out) const;
+  /// world_state_hash is therefore not the tick's exchanged hash. A tick
+  /// outside the ring (negative included) is refused, naming it.
+  Status state_image(int64_t tick, std::vector<uint8_t>* out) const;
   /// Writes `prefix`.replay (when recording) and `prefix`.state: the image
   /// of the desync tick when desynced, else of the confirmed tick.
   Status write_artifacts(const std::string& prefix);
 
   /// Asks endpoint `endpoint` for per-body hashes of `tick` (bodies
   /// [first_body, first_body + count), count ≤ 512); the answer appears in
-  /// remote_body_hashes().
-  void request_body_hashes(uint32_t endpoint, uint64_t tick, uint32_t first_body, uint32_t count);
+  /// remote_body_hashes(). Refused (nothing sent) before start(), for the
+  /// local or an unknown endpoint, and for a tick outside 0…UINT32_MAX (the
+  /// packet's encoding); a count above 512 is clamped to 512.
+  Status request_body_hashes(uint32_t endpoint, int64_t tick, uint32_t first_body, uint32_t count);
   /// Per-body hashes last received: tick, first body and the hashes.
   struct BodyHashes {
     uint32_t endpoint = 0;
-    uint64_t tick = 0;
+    int64_t tick = 0;
     uint32_t first_body = 0;
     std::vector<uint64_t> hashes;
   };
   const BodyHashes& remote_body_hashes() const { return remote_body_hashes_; }
   /// Per-body hashes of a tick in the snapshot ring (index order; 0 for dead slots).
-  Status local_body_hashes(uint64_t tick, std::vector<uint64_t>* out) const;
+  Status local_body_hashes(int64_t tick, std::vector<uint64_t>* out) const;
 
  private:
   struct Slot;
@@ -289,7 +295,7 @@ class Session {
   bool input_known(uint32_t player, uint64_t tick) const;
   void store_input(uint32_t player, uint64_t tick, const uint8_t* bytes);
   uint64_t all_known_through() const;
-  Status ring_slot(uint64_t tick, size_t* slot) const;  // the snapshot slot holding `tick`, or why none does
+  Status ring_slot(int64_t tick, size_t* slot) const;  // the snapshot slot holding `tick`, or why none does
   bool simulate(uint64_t tick);
   void rollback();
   void confirm();
@@ -300,7 +306,7 @@ class Session {
   void stop(SessionState state, const std::string& message);
   void desync(uint32_t endpoint, uint64_t tick, uint64_t local_hash, uint64_t remote_hash, bool reported);
   void reject(const std::string& why);
-  void send_raw(uint32_t endpoint, size_t size);
+  void send_packet(uint32_t endpoint);  // encodes packet_out_ into out_buffer_ and sends it
   void handle_input(uint32_t from, const SessionPacket& p);
   void handle_body_request(uint32_t from, const SessionPacket& p);
 

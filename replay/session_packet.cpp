@@ -12,11 +12,13 @@ namespace {
 
 Status refuse(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
 
-// Reads "first tick, u8 count" and checks the tick range.
-bool read_tick_range(ByteReader& r, const char* tick_what, const char* count_what, uint32_t max_count, uint32_t* first,
-                     uint8_t* count) {
+// Reads "first tick, u8 count" and checks the tick range; the u32 tick is
+// widened to the API's int64_t.
+bool read_tick_range(ByteReader& r, const char* tick_what, const char* count_what, uint32_t max_count,
+                     int64_t* first_tick, uint8_t* count) {
   const size_t tick_at = r.offset();
-  *first = r.u32(tick_what);
+  const uint32_t first = r.u32(tick_what);
+  *first_tick = first;
   const size_t count_at = r.offset();
   *count = r.u8(count_what);
   if (!r.ok()) return false;
@@ -25,13 +27,13 @@ bool read_tick_range(ByteReader& r, const char* tick_what, const char* count_wha
                             std::to_string(*count));
     return false;
   }
-  if (*count == 0 && *first != 0) {
-    r.fail_at(tick_at, std::string("expected ") + tick_what + " 0 with no entries, got " + std::to_string(*first));
+  if (*count == 0 && first != 0) {
+    r.fail_at(tick_at, std::string("expected ") + tick_what + " 0 with no entries, got " + std::to_string(first));
     return false;
   }
-  if (*count != 0 && (*first == 0 || *first > UINT32_MAX - (*count - 1u))) {
+  if (*count != 0 && (first == 0 || first > UINT32_MAX - (*count - 1u))) {
     r.fail_at(tick_at, std::string("expected ") + tick_what + " 1…" + std::to_string(UINT32_MAX - (*count - 1u)) +
-                           ", got " + std::to_string(*first));
+                           ", got " + std::to_string(first));
     return false;
   }
   return true;
@@ -148,6 +150,9 @@ Status decode_session_packet(const uint8_t* data, size_t size, const SessionPack
 
 namespace {
 
+// A tick field that check_session_packet accepted (0…UINT32_MAX).
+uint32_t wire_tick(int64_t tick) { return static_cast<uint32_t>(tick); }
+
 void write_packet(ByteWriter& w, const SessionPacket& p) {
   w.u8('T');
   w.u8('S');
@@ -158,25 +163,25 @@ void write_packet(ByteWriter& w, const SessionPacket& p) {
   w.u32(p.sequence);
   switch (p.type) {
     case SessionPacketType::input:
-      w.u32(p.sender_tick);
+      w.u32(wire_tick(p.sender_tick));
       w.i32(p.advantage);
-      w.u32(p.input_ack);
-      w.u32(p.hash_ack);
-      w.u32(p.input_count != 0 ? p.first_input_tick : 0);
+      w.u32(wire_tick(p.input_ack));
+      w.u32(wire_tick(p.hash_ack));
+      w.u32(p.input_count != 0 ? wire_tick(p.first_input_tick) : 0);
       w.u8(p.input_count);
       w.u8(p.input_count != 0 ? p.input_bytes : 0);
       if (p.input_count != 0) w.bytes(p.inputs.data(), size_t{p.input_count} * p.input_bytes);
-      w.u32(p.hash_count != 0 ? p.first_hash_tick : 0);
+      w.u32(p.hash_count != 0 ? wire_tick(p.first_hash_tick) : 0);
       w.u8(p.hash_count);
       for (uint32_t i = 0; i < p.hash_count; ++i) w.u64(p.hashes[i]);
       break;
     case SessionPacketType::desync:
-      w.u32(p.tick);
+      w.u32(wire_tick(p.tick));
       w.u64(p.hash);
       break;
     case SessionPacketType::body_hash_request:
     case SessionPacketType::body_hash_reply:
-      w.u32(p.tick);
+      w.u32(wire_tick(p.tick));
       w.u32(p.first_body);
       w.u32(p.body_count);
       if (p.type == SessionPacketType::body_hash_reply) w.bytes(p.body_hash_bytes.data(), size_t{p.body_count} * 8);
@@ -184,27 +189,73 @@ void write_packet(ByteWriter& w, const SessionPacket& p) {
   }
 }
 
-bool counts_ok(const SessionPacket& p) {
-  if (p.input_count > k_packet_max_inputs || p.hash_count > k_packet_max_hashes) return false;
-  if (p.input_count != 0 && (p.input_bytes == 0 || p.input_bytes > k_session_max_input_bytes)) return false;
-  if (p.body_count > k_packet_max_body_hashes) return false;
-  if (p.type == SessionPacketType::body_hash_reply && p.body_hash_bytes.size() != size_t{p.body_count} * 8) return false;
-  return true;
+Status check_tick(const char* field, int64_t tick) {
+  if (tick >= 0 && tick <= int64_t{UINT32_MAX}) return {};
+  return refuse(std::string("session packet: ") + field + " " + std::to_string(tick) +
+                " outside the encodable range 0…" + std::to_string(UINT32_MAX));
+}
+
+// A run of `count` consecutive ticks from `first` (ignored when count is 0).
+Status check_tick_range(const char* field, int64_t first, uint32_t count) {
+  if (count == 0) return {};
+  const int64_t last = int64_t{UINT32_MAX} - (int64_t{count} - 1);
+  if (first >= 1 && first <= last) return {};
+  return refuse(std::string("session packet: ") + field + " " + std::to_string(first) + " outside 1…" +
+                std::to_string(last) + " for " + std::to_string(count) + " entries");
+}
+
+Status count_error(const char* field, uint64_t got, uint64_t most) {
+  return refuse(std::string("session packet: ") + field + " " + std::to_string(got) + ", expected at most " +
+                std::to_string(most));
 }
 
 }  // namespace
 
-size_t encode_session_packet(const SessionPacket& packet, uint8_t* buffer, size_t capacity) {
-  if (!counts_ok(packet)) return 0;
-  ByteWriter w(buffer, capacity);
-  write_packet(w, packet);
-  return w.overflowed() ? 0 : w.size();
+Status check_session_packet(const SessionPacket& p) {
+  if (p.input_count > k_packet_max_inputs) return count_error("input count", p.input_count, k_packet_max_inputs);
+  if (p.hash_count > k_packet_max_hashes) return count_error("hash count", p.hash_count, k_packet_max_hashes);
+  if (p.input_count != 0 && (p.input_bytes == 0 || p.input_bytes > k_session_max_input_bytes)) {
+    return refuse("session packet: input bytes " + std::to_string(p.input_bytes) + ", expected 1…" +
+                  std::to_string(k_session_max_input_bytes));
+  }
+  if (p.body_count > k_packet_max_body_hashes) return count_error("body count", p.body_count, k_packet_max_body_hashes);
+  if (p.type == SessionPacketType::body_hash_reply && p.body_hash_bytes.size() != size_t{p.body_count} * 8) {
+    return refuse("session packet: " + std::to_string(p.body_hash_bytes.size()) + " body hash bytes for body count " +
+                  std::to_string(p.body_count) + ", expected 8 each");
+  }
+  Status s;
+  if (p.type == SessionPacketType::input) {
+    if (s = check_tick("sender tick", p.sender_tick); !s.ok()) return s;
+    if (s = check_tick("input ack", p.input_ack); !s.ok()) return s;
+    if (s = check_tick("hash ack", p.hash_ack); !s.ok()) return s;
+    if (s = check_tick_range("first input tick", p.first_input_tick, p.input_count); !s.ok()) return s;
+    if (s = check_tick_range("first hash tick", p.first_hash_tick, p.hash_count); !s.ok()) return s;
+  } else {
+    if (s = check_tick("tick", p.tick); !s.ok()) return s;
+  }
+  return {};
 }
 
-void encode_session_packet(const SessionPacket& packet, std::vector<uint8_t>* out) {
-  if (!counts_ok(packet)) return;
+Status encode_session_packet(const SessionPacket& packet, uint8_t* buffer, size_t capacity, size_t* out_size) {
+  *out_size = 0;
+  Status s = check_session_packet(packet);
+  if (!s.ok()) return s;
+  ByteWriter w(buffer, capacity);
+  write_packet(w, packet);
+  if (w.overflowed()) {
+    return Status{StatusCode::capacity_exceeded, "session packet: needs " + std::to_string(w.size()) +
+                                                     " bytes, the buffer holds " + std::to_string(capacity)};
+  }
+  *out_size = w.size();
+  return {};
+}
+
+Status encode_session_packet(const SessionPacket& packet, std::vector<uint8_t>* out) {
+  Status s = check_session_packet(packet);
+  if (!s.ok()) return s;
   ByteWriter w(out);
   write_packet(w, packet);
+  return {};
 }
 
 }  // namespace tandem

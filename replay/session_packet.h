@@ -80,20 +80,21 @@ struct SessionPacket {
   uint64_t session_id = 0;
   uint8_t sender = 0;
   uint32_t sequence = 0;
-  // input
-  uint32_t sender_tick = 0;
+  // input. Ticks are int64_t as everywhere in the API; on the wire they are
+  // u32, so the encoder refuses a tick outside 0…UINT32_MAX (naming it).
+  int64_t sender_tick = 0;
   int32_t advantage = 0;
-  uint32_t input_ack = 0;
-  uint32_t hash_ack = 0;
-  uint32_t first_input_tick = 0;
+  int64_t input_ack = 0;
+  int64_t hash_ack = 0;
+  int64_t first_input_tick = 0;
   uint8_t input_count = 0;
   uint8_t input_bytes = 0;
   std::array<uint8_t, k_packet_max_inputs * k_session_max_input_bytes> inputs{};  ///< input_count × input_bytes used
-  uint32_t first_hash_tick = 0;
+  int64_t first_hash_tick = 0;
   uint8_t hash_count = 0;
   std::array<uint64_t, k_packet_max_hashes> hashes{};
   // desync, body hashes
-  uint32_t tick = 0;
+  int64_t tick = 0;
   uint64_t hash = 0;            ///< desync: the sender's hash of `tick`
   uint32_t first_body = 0;      ///< body hash request / reply
   uint32_t body_count = 0;
@@ -116,12 +117,30 @@ struct SessionPacketLimits {
 /// "offset N: " and names the field; *out is unspecified then.
 Status decode_session_packet(const uint8_t* data, size_t size, const SessionPacketLimits& limits, SessionPacket* out);
 
-/// Encodes `packet` into buffer[0, capacity) and returns the size written, or
-/// 0 when it does not fit or a count exceeds its limit (nothing is written
-/// past the capacity). Only the fields of the packet's type are written.
-size_t encode_session_packet(const SessionPacket& packet, uint8_t* buffer, size_t capacity);
+/// Checks `packet` against the format: counts within their limits, input
+/// bytes 1…64 when there are inputs, reply bytes = 8 × body count, and every
+/// tick field within the u32 encoding (0…UINT32_MAX; first + count − 1 too,
+/// and first ≥ 1 when count > 0). The message names the field and the value,
+/// e.g. "session packet: tick -1 outside the encodable range 0…4294967295".
+Status check_session_packet(const SessionPacket& packet);
 
-/// Appends the encoding to *out (convenience for tests and tools).
-void encode_session_packet(const SessionPacket& packet, std::vector<uint8_t>* out);
+/// Encodes `packet` into buffer[0, capacity) and writes the size to
+/// *out_size (0 on a refusal; required). Refuses what check_session_packet
+/// refuses, and a buffer too small (capacity_exceeded, naming both sizes;
+/// nothing is written past the capacity). Only the fields of the packet's
+/// type are written.
+Status encode_session_packet(const SessionPacket& packet, uint8_t* buffer, size_t capacity, size_t* out_size);
+
+/// Appends the encoding to *out (convenience for tests and tools); on a
+/// refusal (as check_session_packet) *out is unchanged.
+Status encode_session_packet(const SessionPacket& packet, std::vector<uint8_t>* out);
+
+/// Deprecated (removed next release): returns the size written, 0 on any
+/// refusal; use the Status form.
+[[deprecated("use encode_session_packet(packet, buffer, capacity, &size), which returns a Status")]] inline size_t
+encode_session_packet(const SessionPacket& packet, uint8_t* buffer, size_t capacity) {
+  size_t size = 0;
+  return encode_session_packet(packet, buffer, capacity, &size).ok() ? size : 0;
+}
 
 }  // namespace tandem

@@ -21,8 +21,8 @@ namespace tandem {
 
 /// Settings of run_synctest.
 struct SyncTestOptions {
-  int32_t ticks = 0;        ///< ticks to simulate (first pass), ≥ 0
-  int32_t rollback = 8;     ///< K: ticks rolled back and resimulated after each tick, 1…1024
+  int64_t ticks = 0;        ///< ticks to simulate (first pass), ≥ 0
+  int64_t rollback = 8;     ///< K: ticks rolled back and resimulated after each tick, 1…1024
   Q32 time_step = Q32::from_ratio(1, 60);  ///< s, passed to world_step
 };
 

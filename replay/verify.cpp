@@ -18,7 +18,7 @@ using OwnedWorld = UniqueWorld;
 Status fail(const std::string& message) { return Status{StatusCode::invalid_argument, message}; }
 
 // Index of the keyframe recorded exactly at `tick`, if any.
-std::optional<size_t> keyframe_index_at(const Replay& r, uint64_t tick) {
+std::optional<size_t> keyframe_index_at(const Replay& r, int64_t tick) {
   for (size_t i = 0; i < r.keyframes.size(); ++i)
     if (r.keyframes[i].tick == tick) return i;
   return std::nullopt;
@@ -45,7 +45,7 @@ bool diff_images(std::span<const uint8_t> a, std::span<const uint8_t> b, StateDi
 // The recorded run's state after `tick`: a keyframe recorded there, or a
 // re-simulation whose hash matches the recorded one (or that has none to
 // match). nullopt when the replay cannot stand for its recorded run there.
-std::optional<std::vector<uint8_t>> trusted_state_at(const Replay& r, uint64_t tick, const PayloadHandler& payloads) {
+std::optional<std::vector<uint8_t>> trusted_state_at(const Replay& r, int64_t tick, const PayloadHandler& payloads) {
   if (const auto k = keyframe_index_at(r, tick)) return r.keyframes[*k].state;
   if (tick > r.tick_count()) return std::nullopt;
   Result<WorldId> w = r.create_world_at(tick, payloads);
@@ -66,7 +66,7 @@ uint64_t image_state_hash(const std::vector<uint8_t>& image) {
   return world_state_hash(world.id);
 }
 
-void report_progress(const ProgressCallback& progress, uint64_t done, uint64_t total) {
+void report_progress(const ProgressCallback& progress, int64_t done, int64_t total) {
   if (progress && (done % 64 == 0 || done == total)) progress(done, total);
 }
 
@@ -94,6 +94,10 @@ size_t first_difference(const std::vector<uint8_t>& a, const std::vector<uint8_t
 
 VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   VerifyReport rep;
+  if (options.max_ticks < 0) {
+    rep.error = fail("verify: max_ticks " + std::to_string(options.max_ticks) + " is negative");
+    return rep;
+  }
   if (replay.keyframes.empty()) {
     rep.error = fail("verify: the replay has no initial keyframe");
     return rep;
@@ -129,12 +133,12 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
     rep.keyframes_checked = 1;
   }
 
-  const uint64_t n = std::min<uint64_t>(replay.tick_count(), options.max_ticks);
+  const int64_t n = std::min<int64_t>(replay.tick_count(), options.max_ticks);
   size_t next_key = 1;
   uint64_t hash_after_mismatch = 0;
   // The game state, recomputed tick by tick from the tick-0 keyframe's.
   std::vector<uint8_t> game = k0.game_state, game_next;
-  for (uint64_t t = 1; t <= n; ++t) {
+  for (int64_t t = 1; t <= n; ++t) {
     const TickRecord& rec = replay.tick_record(t);
     Status s = run_tick(world.id, rec, dt, options.payloads, &rep.refused_commands, &rep.skipped_payloads);
     if (!s.ok()) {
@@ -207,7 +211,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
   }
   if (!rep.mismatch || !options.locate || rep.game_state_mismatch) return rep;
 
-  const uint64_t t = rep.mismatch_tick;
+  const int64_t t = rep.mismatch_tick;
   // Does this machine reproduce its own run from the previous keyframe?
   {
     const Keyframe& prev = replay.keyframe_at_or_before(t - 1);
@@ -215,7 +219,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
     if (w2.ok()) {
       OwnedWorld second(w2.value);
       bool ran = true;
-      for (uint64_t u = prev.tick + 1; u <= t && ran; ++u)
+      for (int64_t u = prev.tick + 1; u <= t && ran; ++u)
         ran = run_tick(second.id, replay.tick_record(u), dt, options.payloads).ok();
       if (ran && world_state_hash(second.id) != hash_after_mismatch) {
         rep.self_consistent = false;
@@ -236,7 +240,7 @@ VerifyReport verify_replay(const Replay& replay, const VerifyOptions& options) {
                 ", so the differing body and field cannot be named (record with a smaller keyframe interval)";
     return rep;
   }
-  for (uint64_t u = t + 1; u <= target->tick; ++u) {
+  for (int64_t u = t + 1; u <= target->tick; ++u) {
     Status s = run_tick(world.id, replay.tick_record(u), dt, options.payloads);
     if (!s.ok()) {
       rep.note += "could not re-run to the keyframe at tick " + std::to_string(target->tick) + ": " + s.message;
@@ -299,15 +303,15 @@ std::string format_verify_report(const VerifyReport& r) {
 
 namespace {
 
-void locate_between_replays(const Replay& a, const Replay& b, uint64_t tick, const DiffOptions& o, DiffReport* rep) {
-  std::vector<uint64_t> candidates{tick};
-  const uint64_t n = std::min(a.tick_count(), b.tick_count());
+void locate_between_replays(const Replay& a, const Replay& b, int64_t tick, const DiffOptions& o, DiffReport* rep) {
+  std::vector<int64_t> candidates{tick};
+  const int64_t n = std::min(a.tick_count(), b.tick_count());
   for (const Replay* r : {&a, &b})
     for (const Keyframe& k : r->keyframes)
       if (k.tick > tick && k.tick <= n) candidates.push_back(k.tick);
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  for (uint64_t k : candidates) {
+  for (int64_t k : candidates) {
     const auto sa = trusted_state_at(a, k, o.payloads_a);
     if (!sa) continue;
     const auto sb = trusted_state_at(b, k, o.payloads_b);
@@ -330,8 +334,8 @@ void locate_between_replays(const Replay& a, const Replay& b, uint64_t tick, con
 }
 
 void compare_inputs(const Replay& a, const Replay& b, DiffReport* rep) {
-  const uint64_t n = std::min(a.tick_count(), b.tick_count());
-  for (uint64_t t = 1; t <= n; ++t) {
+  const int64_t n = std::min(a.tick_count(), b.tick_count());
+  for (int64_t t = 1; t <= n; ++t) {
     const auto& ca = a.tick_record(t).commands;
     const auto& cb = b.tick_record(t).commands;
     bool same = ca.size() == cb.size();
@@ -375,12 +379,12 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
     }
     return rep;
   }
-  const uint64_t n = std::min(a.tick_count(), b.tick_count());
+  const int64_t n = std::min(a.tick_count(), b.tick_count());
   bool all_hashes = true;
-  for (uint64_t t = 1; t <= n && all_hashes; ++t) all_hashes = a.tick_record(t).has_hash && b.tick_record(t).has_hash;
+  for (int64_t t = 1; t <= n && all_hashes; ++t) all_hashes = a.tick_record(t).has_hash && b.tick_record(t).has_hash;
   if (all_hashes) {
     rep.method = "hash chain";
-    for (uint64_t t = 1; t <= n; ++t) {
+    for (int64_t t = 1; t <= n; ++t) {
       rep.ticks_compared = t;
       if (a.tick_record(t).hash != b.tick_record(t).hash) {
         rep.differs = true;
@@ -405,7 +409,7 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
       return rep;
     }
     OwnedWorld world_b(wb.value);
-    for (uint64_t t = 1; t <= n; ++t) {
+    for (int64_t t = 1; t <= n; ++t) {
       Status s = run_tick(world_a.id, a.tick_record(t), a.header.time_step, o.payloads_a);
       if (!s.ok()) {
         rep.error = fail("diff: A: " + s.message);
@@ -445,11 +449,15 @@ DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& o) 
   return rep;
 }
 
-DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advance, uint64_t ticks,
+DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advance, int64_t ticks,
                             const DiffOptions& o) {
   DiffReport rep;
   rep.method = "live run";
   rep.ticks_a = a.tick_count();
+  if (ticks < 0) {
+    rep.error = fail("diff: tick count " + std::to_string(ticks) + " is negative");
+    return rep;
+  }
   if (a.keyframes.empty()) {
     rep.error = fail("diff: the replay has no initial keyframe");
     return rep;
@@ -460,8 +468,8 @@ DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advan
     return rep;
   }
   OwnedWorld world_a(wa.value);
-  const uint64_t n = std::min(ticks, a.tick_count());
-  for (uint64_t t = 0; t <= n; ++t) {
+  const int64_t n = std::min(ticks, a.tick_count());
+  for (int64_t t = 0; t <= n; ++t) {
     if (t > 0) {
       Status s = run_tick(world_a.id, a.tick_record(t), a.header.time_step, o.payloads_a);
       if (!s.ok()) {

@@ -43,20 +43,20 @@
 namespace tandem {
 
 /// Called with (ticks done, ticks in total) while a long check runs.
-using ProgressCallback = std::function<void(uint64_t done, uint64_t total)>;
+using ProgressCallback = std::function<void(int64_t done, int64_t total)>;
 
 /// The game's own logic after a tick's step, for checking recorded game
 /// states (replay format 2): from the game state before `tick` and the world
 /// after its step, the game state after it (*after is replaced). A pure
 /// function of its arguments, as a session's after_step + save_game are.
-using GameStep = std::function<Status(uint64_t tick, WorldId world, std::span<const uint8_t> before,
+using GameStep = std::function<Status(int64_t tick, WorldId world, std::span<const uint8_t> before,
                                       std::vector<uint8_t>* after)>;
 
 /// Options of verify_replay.
 struct VerifyOptions {
   PayloadHandler payloads;           ///< turns user payloads into commands; unset: payloads skipped
   GameStep game;                     ///< checks recorded game states (from the tick-0 keyframe's); unset: not checked
-  uint64_t max_ticks = UINT64_MAX;   ///< check at most this many ticks
+  int64_t max_ticks = INT64_MAX;     ///< check at most this many ticks (≥ 0)
   bool locate = true;                ///< on a mismatch, find the body and field (costs a re-run)
   ProgressCallback progress;         ///< optional
 };
@@ -64,7 +64,7 @@ struct VerifyOptions {
 /// The outcome of verify_replay.
 struct VerifyReport {
   Status error;                  ///< not ok: the check could not run (restore or a step refused)
-  uint64_t ticks_run = 0;        ///< ticks re-simulated
+  int64_t ticks_run = 0;         ///< ticks re-simulated
   uint64_t hashes_checked = 0;   ///< recorded tick hashes compared (until the first mismatch)
   uint64_t keyframes_checked = 0;
   uint64_t game_states_recorded = 0;  ///< ticks (run) whose game state the file holds
@@ -73,11 +73,11 @@ struct VerifyReport {
   uint32_t refused_commands = 0; ///< commands refused while re-running (also refused when recorded)
   uint32_t skipped_payloads = 0; ///< user payloads skipped (no VerifyOptions::payloads handler)
   bool mismatch = false;
-  uint64_t mismatch_tick = 0;    ///< first tick whose recomputed state differs from the recording
+  int64_t mismatch_tick = 0;     ///< first tick whose recomputed state differs from the recording
   uint64_t expected_hash = 0;    ///< recorded hash at mismatch_tick (or the keyframe's; XXH3-64 of the game state bytes for a game state mismatch)
   uint64_t actual_hash = 0;      ///< recomputed hash
   bool located = false;          ///< `difference` is meaningful
-  uint64_t located_tick = 0;     ///< the tick where `difference` was taken (≥ mismatch_tick)
+  int64_t located_tick = 0;      ///< the tick where `difference` was taken (≥ mismatch_tick)
   StateDifference difference;    ///< a = recorded, b = recomputed
   bool self_consistent = true;   ///< re-running from the previous keyframe gave the same hash
   std::string note;              ///< extra explanation (why not located, ...)
@@ -97,18 +97,18 @@ struct DiffReport {
   Status error;                  ///< not ok: the comparison could not run
   bool differs = false;
   std::string method;            ///< "hash chain", "resimulation", "live run", "snapshot"
-  uint64_t ticks_compared = 0;   ///< ticks whose states were compared
-  uint64_t tick = 0;             ///< first tick whose states differ (0: the initial states)
+  int64_t ticks_compared = 0;    ///< ticks whose states were compared
+  int64_t tick = 0;              ///< first tick whose states differ (0: the initial states)
   uint64_t hash_a = 0;           ///< state hashes at `tick`
   uint64_t hash_b = 0;
   bool located = false;          ///< `difference` is meaningful
-  uint64_t located_tick = 0;     ///< tick of the compared states (= tick unless noted)
+  int64_t located_tick = 0;      ///< tick of the compared states (= tick unless noted)
   StateDifference difference;    ///< first differing record and field (a vs b)
   bool inputs_differ = false;    ///< replays: the recorded inputs differ
-  uint64_t inputs_differ_tick = 0;  ///< first tick whose commands differ
+  int64_t inputs_differ_tick = 0;   ///< first tick whose commands differ
   bool length_differs = false;   ///< replays: different tick counts (and no state difference before)
-  uint64_t ticks_a = 0;
-  uint64_t ticks_b = 0;
+  int64_t ticks_a = 0;
+  int64_t ticks_b = 0;
   std::string note;
 };
 
@@ -123,12 +123,13 @@ struct DiffOptions {
 DiffReport diff_replays(const Replay& a, const Replay& b, const DiffOptions& options = {});
 
 /// Advances a live world by one tick: tick is 1-based.
-using LiveTick = std::function<Status(uint64_t tick)>;
+using LiveTick = std::function<Status(int64_t tick)>;
 
 /// The first difference between a replay (a) and a live run (b): `live` is in
 /// the state of the replay's tick 0 (or not: then tick 0 differs); `advance`
-/// runs one live tick. Compares up to `ticks` ticks (capped at the replay's).
-DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advance, uint64_t ticks,
+/// runs one live tick. Compares up to `ticks` ticks (capped at the replay's;
+/// a negative count is refused, naming it).
+DiffReport diff_replay_live(const Replay& a, WorldId live, const LiveTick& advance, int64_t ticks,
                             const DiffOptions& options = {});
 
 /// The difference between two state images.

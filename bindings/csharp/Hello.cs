@@ -9,7 +9,7 @@ using Tandem;
 
 static class Hello {
   static int Main(string[] args) {
-    if (Native.tandem_abi_version() != 3) { Console.Error.WriteLine("unexpected libtandem ABI"); return 1; }
+    if (Native.tandem_abi_version() != 4) { Console.Error.WriteLine("unexpected libtandem ABI"); return 1; }
     using (var world = new World()) {
       var groundDef = Native.tandem_default_body_def();
       world.CreateBody(groundDef).AddBox(Q.FromInt(20), Q.FromInt(1));

@@ -11,7 +11,7 @@ first (it loads the library).
 """
 import ctypes
 from ctypes import CFUNCTYPE, POINTER, Structure, byref, c_bool, c_char_p, c_int32, c_size_t, c_uint8, c_uint32
-from ctypes import c_uint64, c_void_p
+from ctypes import c_int64, c_uint64, c_void_p
 
 from tandem import ObjectId, WorldId, _check, _fn, _Owned, _status, lib, q32
 
@@ -26,8 +26,8 @@ class SessionConfig(Structure):
 
 
 _SEND_FN = CFUNCTYPE(None, c_void_p, c_uint32, POINTER(c_uint8), c_size_t)
-_MAKE_COMMANDS_FN = CFUNCTYPE(c_int32, c_void_p, c_uint64, POINTER(c_uint8), c_uint32, c_uint32, WorldId, c_void_p)
-_AFTER_STEP_FN = CFUNCTYPE(None, c_void_p, c_uint64, WorldId)
+_MAKE_COMMANDS_FN = CFUNCTYPE(c_int32, c_void_p, c_int64, POINTER(c_uint8), c_uint32, c_uint32, WorldId, c_void_p)
+_AFTER_STEP_FN = CFUNCTYPE(None, c_void_p, c_int64, WorldId)
 _SAVE_GAME_FN = CFUNCTYPE(None, c_void_p, c_void_p)
 _LOAD_GAME_FN = CFUNCTYPE(None, c_void_p, POINTER(c_uint8), c_size_t)
 
@@ -38,8 +38,8 @@ class SessionCallbacks(Structure):
 
 
 class SessionStop(Structure):
-    _fields_ = [("state", c_int32), ("tick", c_uint64), ("endpoint", c_uint32), ("local_hash", c_uint64),
-                ("remote_hash", c_uint64), ("last_heard_tick", c_uint64)]
+    _fields_ = [("state", c_int32), ("tick", c_int64), ("endpoint", c_uint32), ("local_hash", c_uint64),
+                ("remote_hash", c_uint64), ("last_heard_tick", c_int64)]
 
 
 _STAT_NAMES = ["frames", "stalls", "rollbacks", "max_rollback_depth", "resimulated_ticks", "ticks_simulated",
@@ -58,9 +58,9 @@ _fn("tandem_session_destroy", _status, ObjectId)
 _fn("tandem_session_advance_frame", _status, ObjectId, POINTER(c_uint8), c_size_t, POINTER(c_int32))
 _fn("tandem_session_idle_frame", _status, ObjectId, POINTER(c_int32))
 _fn("tandem_session_receive", _status, ObjectId, c_uint32, POINTER(c_uint8), c_size_t)
-_fn("tandem_session_current_tick", c_uint64, ObjectId)
-_fn("tandem_session_confirmed_tick", c_uint64, ObjectId)
-_fn("tandem_session_confirmed_hash", c_uint64, ObjectId, c_uint64)
+_fn("tandem_session_current_tick", c_int64, ObjectId)
+_fn("tandem_session_confirmed_tick", c_int64, ObjectId)
+_fn("tandem_session_confirmed_hash", c_uint64, ObjectId, c_int64)
 _fn("tandem_session_frames_ahead", c_int32, ObjectId)
 _fn("tandem_session_state", c_int32, ObjectId)
 _fn("tandem_session_state_name", c_char_p, c_int32)

@@ -21,13 +21,27 @@
 #define TANDEM_C_API
 #endif
 
+/* Marks a function kept for one release under its old name; the message
+ * names the replacement (see "Naming and deprecations" in README.md). */
+#if defined(TANDEM_C_BUILDING) || defined(TANDEM_C_NO_DEPRECATION_WARNINGS)
+#define TANDEM_C_DEPRECATED(message)
+#elif defined(__GNUC__)
+#define TANDEM_C_DEPRECATED(message) __attribute__((deprecated(message)))
+#elif defined(_MSC_VER)
+#define TANDEM_C_DEPRECATED(message) __declspec(deprecated(message))
+#else
+#define TANDEM_C_DEPRECATED(message)
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /** The version of this header's ABI (bumped on any incompatible change). */
-#define TANDEM_C_ABI_VERSION 3  /* 2: joints, profile, session; joint_count and joint commands appended;
-                                   3: tandem_world_def gained worker_count and the task callbacks */
+#define TANDEM_C_ABI_VERSION 4  /* 2: joints, profile, session; joint_count and joint commands appended;
+                                   3: tandem_world_def gained worker_count and the task callbacks;
+                                   4: every tick is int64_t (tandem_synctest_options.ticks and .rollback
+                                      widened from int32_t; the uint64_t ticks keep their size) */
 
 /* ------------------------------------------------------------------------ */
 /* Scalars, status                                                           */

@@ -53,17 +53,17 @@ TANDEM_C_API tandem_status tandem_apply_state_delta(const uint8_t* base, size_t 
 typedef struct tandem_diff_report {
   tandem_status error;      /**< not TANDEM_OK: the comparison could not run (see text) */
   bool differs;
-  uint64_t tick;            /**< first tick whose states differ */
+  int64_t tick;             /**< first tick whose states differ */
   uint64_t hash_a, hash_b;
   bool located;             /**< difference_text names the record and field */
-  uint64_t located_tick;
+  int64_t located_tick;
   char* difference_text;    /**< "body 3 linear_velocity.x: a = ..., b = ..."; owned */
   char* text;               /**< the full human-readable report; owned */
-  uint64_t ticks_compared;  /**< ticks whose states were compared */
+  int64_t ticks_compared;   /**< ticks whose states were compared */
   bool inputs_differ;       /**< replays: the recorded inputs differ ... */
-  uint64_t inputs_differ_tick;  /**< ... first at this tick */
+  int64_t inputs_differ_tick;   /**< ... first at this tick */
   bool length_differs;      /**< replays: different tick counts */
-  uint64_t ticks_a, ticks_b;
+  int64_t ticks_a, ticks_b;
 } tandem_diff_report;
 
 /** Compares two state images: the first differing record and field. */
@@ -272,7 +272,7 @@ TANDEM_C_API tandem_status tandem_recorder_step(tandem_recorder_id recorder, uin
 /** Finishes the replay (END chunk; closes a file). */
 TANDEM_C_API tandem_status tandem_recorder_finish(tandem_recorder_id recorder);
 /** Ticks recorded (0 for an invalid handle). */
-TANDEM_C_API uint64_t tandem_recorder_tick_count(tandem_recorder_id recorder);
+TANDEM_C_API int64_t tandem_recorder_tick_count(tandem_recorder_id recorder);
 /** The hash recorded after the last step (0 for an invalid handle). */
 TANDEM_C_API uint64_t tandem_recorder_last_hash(tandem_recorder_id recorder);
 /** The bytes of a memory recorder so far (buffer rule over bytes). */
@@ -288,26 +288,28 @@ TANDEM_C_API tandem_status tandem_replay_load_file(const char* path, tandem_repl
 /** Frees a loaded replay. */
 TANDEM_C_API tandem_status tandem_replay_destroy(tandem_replay_id replay);
 /** Ticks in the replay (0 for an invalid handle). */
-TANDEM_C_API uint64_t tandem_replay_tick_count(tandem_replay_id replay);
+TANDEM_C_API int64_t tandem_replay_tick_count(tandem_replay_id replay);
 /** The recorded hash after `tick` (1-based); TANDEM_ERROR_INVALID_ARGUMENT
  * if the tick is out of range or has no hash. */
-TANDEM_C_API tandem_status tandem_replay_tick_hash(tandem_replay_id replay, uint64_t tick, uint64_t* out_hash);
+TANDEM_C_API tandem_status tandem_replay_tick_hash(tandem_replay_id replay, int64_t tick, uint64_t* out_hash);
 /** A new world in the state after `tick` ticks. */
-TANDEM_C_API tandem_status tandem_replay_create_world_at(tandem_replay_id replay, uint64_t tick, tandem_world_id* out_world);
+TANDEM_C_API tandem_status tandem_replay_create_world_at(tandem_replay_id replay, int64_t tick, tandem_world_id* out_world);
 
 /** Puts an existing world into the replay's state after `tick` ticks
  * (restores the nearest keyframe, then re-runs the recorded ticks). */
-TANDEM_C_API tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, uint64_t tick);
+TANDEM_C_API tandem_status tandem_replay_seek(tandem_replay_id replay, tandem_world_id world, int64_t tick);
 
 /** The outcome of tandem_verify_replay. Free with tandem_free_verify_report. */
 typedef struct tandem_verify_report {
   tandem_status error;       /**< not TANDEM_OK: the check could not run */
   bool ok;                   /**< every check passed */
-  uint64_t ticks_run, hashes_checked, keyframes_checked;
+  int64_t ticks_run;
+  uint64_t hashes_checked, keyframes_checked;
   bool mismatch;
-  uint64_t mismatch_tick, expected_hash, actual_hash;
+  int64_t mismatch_tick;
+  uint64_t expected_hash, actual_hash;
   bool located;
-  uint64_t located_tick;
+  int64_t located_tick;
   bool self_consistent;
   char* difference_text;     /**< owned; "" when not located */
   char* text;                /**< the full human-readable report; owned */
@@ -316,24 +318,24 @@ typedef struct tandem_verify_report {
 } tandem_verify_report;
 
 /** Re-simulates a replay and compares every recorded hash and keyframe
- * (max_ticks: UINT64_MAX for all). The returned status is TANDEM_OK when
+ * (max_ticks: INT64_MAX for all; negative is refused). The returned status is TANDEM_OK when
  * the check ran (a mismatch is reported in the report, not as an error). */
-TANDEM_C_API tandem_status tandem_verify_replay(tandem_replay_id replay, uint64_t max_ticks, bool locate,
+TANDEM_C_API tandem_status tandem_verify_replay(tandem_replay_id replay, int64_t max_ticks, bool locate,
                                                 tandem_verify_report* out_report);
 /** Turns a game's opaque payload recorded at `tick` into engine commands
  * (PayloadHandler): push them to *out. A status other than TANDEM_OK stops
  * the run. Must be deterministic. */
-typedef tandem_status (*tandem_payload_fn)(void* context, uint64_t tick, const uint8_t* payload, size_t size,
+typedef tandem_status (*tandem_payload_fn)(void* context, int64_t tick, const uint8_t* payload, size_t size,
                                            tandem_command_list* out);
 /** Progress of a long check: ticks done of total. */
-typedef void (*tandem_progress_fn)(void* context, uint64_t done, uint64_t total);
+typedef void (*tandem_progress_fn)(void* context, int64_t done, int64_t total);
 /** Advances a live world by one tick (tick is 1-based); TANDEM_OK to go on. */
-typedef tandem_status (*tandem_live_tick_fn)(void* context, uint64_t tick);
+typedef tandem_status (*tandem_live_tick_fn)(void* context, int64_t tick);
 
 /** Options of tandem_verify_replay_with (VerifyOptions); NULL functions
  * are unset (payloads skipped, no progress). */
 typedef struct tandem_verify_options {
-  uint64_t max_ticks;          /**< UINT64_MAX: all */
+  int64_t max_ticks;           /**< INT64_MAX: all (≥ 0) */
   bool locate;                 /**< on a mismatch, find the body and field */
   tandem_payload_fn payloads;
   void* payload_context;
@@ -365,14 +367,14 @@ TANDEM_C_API tandem_status tandem_diff_replays_with(tandem_replay_id a, tandem_r
  * Compares up to `ticks` ticks (capped at the replay's). Options may be NULL
  * (payloads_b is not used). */
 TANDEM_C_API tandem_status tandem_diff_replay_live(tandem_replay_id replay, tandem_world_id live,
-                                                   tandem_live_tick_fn advance, void* context, uint64_t ticks,
+                                                   tandem_live_tick_fn advance, void* context, int64_t ticks,
                                                    const tandem_diff_options* options,
                                                    tandem_diff_report* out_report);
 /** tandem_replay_seek and tandem_replay_create_world_at with a payload
  * handler (NULL: payloads skipped). */
-TANDEM_C_API tandem_status tandem_replay_seek_with(tandem_replay_id replay, tandem_world_id world, uint64_t tick,
+TANDEM_C_API tandem_status tandem_replay_seek_with(tandem_replay_id replay, tandem_world_id world, int64_t tick,
                                                    tandem_payload_fn payloads, void* context);
-TANDEM_C_API tandem_status tandem_replay_create_world_at_with(tandem_replay_id replay, uint64_t tick,
+TANDEM_C_API tandem_status tandem_replay_create_world_at_with(tandem_replay_id replay, int64_t tick,
                                                               tandem_payload_fn payloads, void* context,
                                                               tandem_world_id* out_world);
 
@@ -391,8 +393,8 @@ typedef void (*tandem_synctest_input_fn)(tandem_world_id world, int64_t tick, vo
 
 /** Sync test settings. */
 typedef struct tandem_synctest_options {
-  int32_t ticks;          /**< ticks to run */
-  int32_t rollback;       /**< ticks rolled back after each tick, 1…1024; default 8 */
+  int64_t ticks;          /**< ticks to run, ≥ 0 */
+  int64_t rollback;       /**< ticks rolled back after each tick, 1…1024; default 8 */
   tandem_q32 time_step;   /**< default 1/60 s */
 } tandem_synctest_options;
 

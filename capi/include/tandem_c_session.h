@@ -71,9 +71,9 @@ TANDEM_C_API tandem_status tandem_bytes_assign(tandem_bytes* out, const uint8_t*
 typedef struct tandem_session_callbacks {
   void* context;  /**< passed to every callback */
   void (*send)(void* context, uint32_t endpoint, const uint8_t* packet, size_t size);
-  tandem_status (*make_commands)(void* context, uint64_t tick, const uint8_t* inputs, uint32_t player_count,
+  tandem_status (*make_commands)(void* context, int64_t tick, const uint8_t* inputs, uint32_t player_count,
                                  uint32_t input_bytes, tandem_world_id world, tandem_command_list* out);
-  void (*after_step)(void* context, uint64_t tick, tandem_world_id world);       /**< optional */
+  void (*after_step)(void* context, int64_t tick, tandem_world_id world);       /**< optional */
   void (*save_game)(void* context, tandem_bytes* out);                            /**< optional */
   void (*load_game)(void* context, const uint8_t* state, size_t size);            /**< optional */
 } tandem_session_callbacks;
@@ -81,10 +81,10 @@ typedef struct tandem_session_callbacks {
 /** Why a session stopped (SessionStop); the message: tandem_session_stop_message. */
 typedef struct tandem_session_stop {
   int32_t state;              /**< TANDEM_SESSION_* */
-  uint64_t tick;              /**< desynced: first mismatching tick; peer_left: the local tick then */
+  int64_t tick;               /**< desynced: first mismatching tick; peer_left: the local tick then */
   uint32_t endpoint;
   uint64_t local_hash, remote_hash;
-  uint64_t last_heard_tick;
+  int64_t last_heard_tick;
 } tandem_session_stop;
 
 /** Counters (SessionStats); the last rejection: tandem_session_last_rejection. */
@@ -130,12 +130,12 @@ TANDEM_C_API int32_t tandem_session_frames_ahead(tandem_session_id session);
 /** Ticks simulated; last tick simulated with every real input; the lowest
  * tick every connected endpoint has confirmed; the start state's hash (0
  * for an invalid handle). */
-TANDEM_C_API uint64_t tandem_session_current_tick(tandem_session_id session);
-TANDEM_C_API uint64_t tandem_session_confirmed_tick(tandem_session_id session);
-TANDEM_C_API uint64_t tandem_session_remote_confirmed_through(tandem_session_id session);
+TANDEM_C_API int64_t tandem_session_current_tick(tandem_session_id session);
+TANDEM_C_API int64_t tandem_session_confirmed_tick(tandem_session_id session);
+TANDEM_C_API int64_t tandem_session_remote_confirmed_through(tandem_session_id session);
 TANDEM_C_API uint64_t tandem_session_start_hash(tandem_session_id session);
 /** The hash of a confirmed tick still in the ring; 0 otherwise. */
-TANDEM_C_API uint64_t tandem_session_confirmed_hash(tandem_session_id session, uint64_t tick);
+TANDEM_C_API uint64_t tandem_session_confirmed_hash(tandem_session_id session, int64_t tick);
 /** TANDEM_SESSION_* (TANDEM_SESSION_IDLE for an invalid handle). */
 TANDEM_C_API int32_t tandem_session_state(tandem_session_id session);
 /** True when the local endpoint is a spectator. */
@@ -158,21 +158,21 @@ TANDEM_C_API tandem_status tandem_session_last_rejection(tandem_session_id sessi
 TANDEM_C_API tandem_status tandem_session_replay_bytes(tandem_session_id session, uint8_t* out_bytes,
                                                        size_t capacity, size_t* out_size);
 /** The state image of a tick still in the snapshot ring (buffer rule). */
-TANDEM_C_API tandem_status tandem_session_state_image(tandem_session_id session, uint64_t tick, uint8_t* out_bytes,
+TANDEM_C_API tandem_status tandem_session_state_image(tandem_session_id session, int64_t tick, uint8_t* out_bytes,
                                                       size_t capacity, size_t* out_size);
 /** Writes prefix.replay (when recording) and prefix.state. */
 TANDEM_C_API tandem_status tandem_session_write_artifacts(tandem_session_id session, const char* prefix);
 /** Asks an endpoint for per-body hashes of a tick (count ≤ 512). */
 TANDEM_C_API tandem_status tandem_session_request_body_hashes(tandem_session_id session, uint32_t endpoint,
-                                                              uint64_t tick, uint32_t first_body, uint32_t count);
+                                                              int64_t tick, uint32_t first_body, uint32_t count);
 /** The per-body hashes last received (buffer rule over the hashes; endpoint,
  * tick and first body into the optional out pointers). */
 TANDEM_C_API tandem_status tandem_session_remote_body_hashes(tandem_session_id session, uint32_t* out_endpoint,
-                                                             uint64_t* out_tick, uint32_t* out_first_body,
+                                                             int64_t* out_tick, uint32_t* out_first_body,
                                                              uint64_t* out_hashes, int32_t capacity,
                                                              int32_t* out_count);
 /** Per-body hashes of a tick in the snapshot ring, body index order (buffer rule). */
-TANDEM_C_API tandem_status tandem_session_local_body_hashes(tandem_session_id session, uint64_t tick,
+TANDEM_C_API tandem_status tandem_session_local_body_hashes(tandem_session_id session, int64_t tick,
                                                             uint64_t* out_hashes, int32_t capacity,
                                                             int32_t* out_count);
 

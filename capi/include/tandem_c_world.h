@@ -116,9 +116,15 @@ TANDEM_C_API tandem_status tandem_world_bodies(tandem_world_id world, tandem_bod
 /** Selects the broad phase (TANDEM_BROAD_PHASE_*) from the next step on. */
 TANDEM_C_API tandem_status tandem_world_set_broad_phase(tandem_world_id world, int32_t kind);
 /** The broad phase in use (naive for an invalid handle). */
-TANDEM_C_API int32_t tandem_world_get_broad_phase(tandem_world_id world);
+TANDEM_C_API int32_t tandem_world_broad_phase(tandem_world_id world);
 /** The last step's broad-phase figures (zeroes for an invalid handle). */
-TANDEM_C_API tandem_broad_phase_stats tandem_world_get_broad_phase_stats(tandem_world_id world);
+TANDEM_C_API tandem_broad_phase_stats tandem_world_broad_phase_stats(tandem_world_id world);
+/** Deprecated (removed next release): use tandem_world_broad_phase. */
+TANDEM_C_API TANDEM_C_DEPRECATED("use tandem_world_broad_phase") int32_t
+tandem_world_get_broad_phase(tandem_world_id world);
+/** Deprecated (removed next release): use tandem_world_broad_phase_stats. */
+TANDEM_C_API TANDEM_C_DEPRECATED("use tandem_world_broad_phase_stats") tandem_broad_phase_stats
+tandem_world_get_broad_phase_stats(tandem_world_id world);
 /** Installs a custom filter (NULL removes it); `context` is passed back. */
 TANDEM_C_API tandem_status tandem_world_set_custom_filter(tandem_world_id world, tandem_custom_filter_fn filter,
                                                           void* context);
@@ -206,10 +212,14 @@ TANDEM_C_API bool tandem_body_is_bullet(tandem_body_id body);
 TANDEM_C_API tandem_status tandem_body_set_bullet(tandem_body_id body, bool bullet);
 /** True when the body takes part in the simulation. */
 TANDEM_C_API bool tandem_body_is_enabled(tandem_body_id body);
-/** Adds the body back to the simulation. */
-TANDEM_C_API tandem_status tandem_body_enable(tandem_body_id body);
-/** Takes the body out of the simulation. */
-TANDEM_C_API tandem_status tandem_body_disable(tandem_body_id body);
+/** Adds the body to the simulation (true) or takes it out (false). */
+TANDEM_C_API tandem_status tandem_body_set_enabled(tandem_body_id body, bool enabled);
+/** Deprecated (removed next release): tandem_body_set_enabled(body, true). */
+TANDEM_C_API TANDEM_C_DEPRECATED("use tandem_body_set_enabled(body, true)") tandem_status
+tandem_body_enable(tandem_body_id body);
+/** Deprecated (removed next release): tandem_body_set_enabled(body, false). */
+TANDEM_C_API TANDEM_C_DEPRECATED("use tandem_body_set_enabled(body, false)") tandem_status
+tandem_body_disable(tandem_body_id body);
 /** True when a non-static body is awake. */
 TANDEM_C_API bool tandem_body_is_awake(tandem_body_id body);
 /** Wakes the body or puts it to sleep. */

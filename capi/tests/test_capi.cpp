@@ -134,9 +134,9 @@ TEST_CASE("worlds: create, settings, stale handles", "[capi]") {
   CHECK(tandem_world_is_valid(world));
   CHECK(!tandem_world_is_locked(world));
   CHECK(tandem_world_user_data(world) == 42);
-  CHECK(tandem_world_get_broad_phase(world) == TANDEM_BROAD_PHASE_TREE);
+  CHECK(tandem_world_broad_phase(world) == TANDEM_BROAD_PHASE_TREE);
   REQUIRE(tandem_world_set_broad_phase(world, TANDEM_BROAD_PHASE_GRID) == TANDEM_OK);
-  CHECK(tandem_world_get_broad_phase(world) == TANDEM_BROAD_PHASE_GRID);
+  CHECK(tandem_world_broad_phase(world) == TANDEM_BROAD_PHASE_GRID);
   require_error(tandem_world_set_broad_phase(world, 9), TANDEM_ERROR_INVALID_ARGUMENT, "broad");
   REQUIRE(tandem_world_set_gravity(world, v2(0, -5)) == TANDEM_OK);
   CHECK(tandem_world_gravity(world).y == qi(-5));
@@ -176,7 +176,7 @@ TEST_CASE("worlds: create, settings, stale handles", "[capi]") {
   CHECK(counters.body_count == 2);
   CHECK(counters.shape_count == 2);
   CHECK(counters.step_count == 1);
-  const tandem_broad_phase_stats stats = tandem_world_get_broad_phase_stats(world);
+  const tandem_broad_phase_stats stats = tandem_world_broad_phase_stats(world);
   CHECK(stats.proxies == 2);
   CHECK(stats.pairs == 1);
 
@@ -284,10 +284,20 @@ TEST_CASE("bodies: every getter and setter", "[capi]") {
   CHECK(!tandem_body_is_awake(body));
   REQUIRE(tandem_body_set_awake(body, true) == TANDEM_OK);
   CHECK(tandem_body_is_awake(body));
+  REQUIRE(tandem_body_set_enabled(body, false) == TANDEM_OK);
+  CHECK(!tandem_body_is_enabled(body));
+  REQUIRE(tandem_body_set_enabled(body, true) == TANDEM_OK);
+  CHECK(tandem_body_is_enabled(body));
+  // The names deprecated in this release still work (README "Naming and deprecations").
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
   REQUIRE(tandem_body_disable(body) == TANDEM_OK);
   CHECK(!tandem_body_is_enabled(body));
   REQUIRE(tandem_body_enable(body) == TANDEM_OK);
   CHECK(tandem_body_is_enabled(body));
+  CHECK(tandem_world_get_broad_phase(w.id) == tandem_world_broad_phase(w.id));
+  CHECK(tandem_world_get_broad_phase_stats(w.id).pairs == tandem_world_broad_phase_stats(w.id).pairs);
+#pragma GCC diagnostic pop
   REQUIRE(tandem_body_set_user_data(body, 9) == TANDEM_OK);
   CHECK(tandem_body_user_data(body) == 9);
   REQUIRE(tandem_body_set_type(body, TANDEM_BODY_KINEMATIC) == TANDEM_OK);

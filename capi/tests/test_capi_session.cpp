@@ -35,7 +35,7 @@ struct Game {
   tandem_world_id world{};
   tandem_body_id players[k_players]{};
   uint64_t score = 0;
-  uint64_t perturb_tick = 0;  // nudge a body after this tick (desync test)
+  int64_t perturb_tick = 0;  // nudge a body after this tick (desync test)
 };
 
 struct Loopback {
@@ -49,7 +49,7 @@ void send(void* context, uint32_t endpoint, const uint8_t* packet, size_t size) 
 }
 
 // Input byte 0 of player p: 0 nothing, 1 push left, 2 push right.
-tandem_status make_commands(void* context, uint64_t, const uint8_t* inputs, uint32_t player_count,
+tandem_status make_commands(void* context, int64_t, const uint8_t* inputs, uint32_t player_count,
                             uint32_t input_bytes, tandem_world_id, tandem_command_list* out) {
   auto* g = static_cast<Game*>(context);
   for (uint32_t p = 0; p < player_count; ++p) {
@@ -65,9 +65,9 @@ tandem_status make_commands(void* context, uint64_t, const uint8_t* inputs, uint
   return TANDEM_OK;
 }
 
-void after_step(void* context, uint64_t tick, tandem_world_id world) {
+void after_step(void* context, int64_t tick, tandem_world_id world) {
   auto* g = static_cast<Game*>(context);
-  g->score += tick % 3;
+  g->score += static_cast<uint64_t>(tick % 3);
   if (g->perturb_tick != 0 && tick == g->perturb_tick) {
     tandem_vec2 p = tandem_body_position(g->players[0]);
     p.x += 1;
@@ -285,7 +285,7 @@ TEST_CASE("session: defaults, errors, null and stale handles", "[capi][session]"
 
 TEST_CASE("session: two C peers over a loopback confirm the C++ reference hashes", "[capi][session][determinism]") {
   Peers peers(config_for_test());
-  const uint64_t target = 120;
+  const int64_t target = 120;
   for (int f = 0; f < 1000 && (tandem_session_confirmed_tick(peers.sessions[0]) < target ||
                                tandem_session_confirmed_tick(peers.sessions[1]) < target);
        ++f) {
@@ -330,11 +330,11 @@ TEST_CASE("session: two C peers over a loopback confirm the C++ reference hashes
   }
   REQUIRE(world_state_hash(ref) == tandem_session_start_hash(peers.sessions[0]));
   uint64_t score = 0;
-  for (uint64_t tick = 1; tick <= target; ++tick) {
+  for (int64_t tick = 1; tick <= target; ++tick) {
     for (const Command& c : replay.tick_record(tick).commands)
       if (c.type != CommandType::user_input) REQUIRE(apply_command(ref, c).ok());
     REQUIRE(world_step(ref, Q32::from_ratio(1, 60)).ok());
-    score += tick % 3;
+    score += static_cast<uint64_t>(tick % 3);
     uint8_t game[8];
     for (int i = 0; i < 8; ++i) game[i] = static_cast<uint8_t>(score >> (8 * i));
     INFO("tick " << tick);
@@ -349,13 +349,13 @@ TEST_CASE("session: two C peers over a loopback confirm the C++ reference hashes
   tandem_replay_id r{};
   REQUIRE(tandem_replay_load_memory(replay_bytes.data(), replay_bytes.size(), &r) == TANDEM_OK);
   tandem_verify_report report{};
-  REQUIRE(tandem_verify_replay(r, UINT64_MAX, true, &report) == TANDEM_OK);
+  REQUIRE(tandem_verify_replay(r, INT64_MAX, true, &report) == TANDEM_OK);
   CHECK(report.ok);
   tandem_free_verify_report(&report);
   REQUIRE(tandem_replay_destroy(r) == TANDEM_OK);
 
   // State images and per-body hashes of a tick in the ring; a request answered over the loopback.
-  const uint64_t t = tandem_session_confirmed_tick(peers.sessions[0]);
+  const int64_t t = tandem_session_confirmed_tick(peers.sessions[0]);
   REQUIRE(tandem_session_state_image(peers.sessions[0], t, nullptr, 0, &size) == TANDEM_OK);
   std::vector<uint8_t> image(size);
   require_error(tandem_session_state_image(peers.sessions[0], t, image.data(), 3, &size), TANDEM_ERROR_BUFFER_TOO_SMALL,
@@ -369,7 +369,7 @@ TEST_CASE("session: two C peers over a loopback confirm the C++ reference hashes
   REQUIRE(tandem_session_request_body_hashes(peers.sessions[1], 0, t, 0, static_cast<uint32_t>(n)) == TANDEM_OK);
   for (int f = 0; f < 6; ++f) peers.frame();
   uint32_t endpoint = 9, first = 9;
-  uint64_t tick = 0;
+  int64_t tick = 0;
   std::vector<uint64_t> remote(static_cast<size_t>(n));
   REQUIRE(tandem_session_remote_body_hashes(peers.sessions[1], &endpoint, &tick, &first, remote.data(), n, &n) ==
           TANDEM_OK);

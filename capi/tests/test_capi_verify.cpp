@@ -11,9 +11,9 @@
 
 namespace {
 
-constexpr uint64_t k_ticks = 90;
+constexpr int64_t k_ticks = 90;
 
-uint8_t payload_of(uint64_t tick) { return static_cast<uint8_t>(tick % 4); }  // 0, 1 left, 2 right, 3 up
+uint8_t payload_of(int64_t tick) { return static_cast<uint8_t>(tick % 4); }  // 0, 1 left, 2 right, 3 up
 
 tandem_vec2 push_of(uint8_t p) {
   if (p == 1) return v2(-1, 0);
@@ -36,7 +36,7 @@ Recording record() {
   tandem_recorder_id rec{};
   REQUIRE(tandem_recorder_create_memory(&options, &rec) == TANDEM_OK);
   REQUIRE(tandem_recorder_begin(rec, w.id, nullptr, 0) == TANDEM_OK);
-  for (uint64_t tick = 1; tick <= k_ticks; ++tick) {
+  for (int64_t tick = 1; tick <= k_ticks; ++tick) {
     const uint8_t p = payload_of(tick);
     if (p != 0) {
       REQUIRE(tandem_recorder_submit_payload(rec, &p, 1) == TANDEM_OK);
@@ -59,7 +59,7 @@ struct Handler {
   bool fail = false;
 };
 
-tandem_status payload_handler(void* context, uint64_t, const uint8_t* payload, size_t size, tandem_command_list* out) {
+tandem_status payload_handler(void* context, int64_t, const uint8_t* payload, size_t size, tandem_command_list* out) {
   auto* h = static_cast<Handler*>(context);
   ++h->calls;
   if (h->fail) return TANDEM_ERROR_INVALID_ARGUMENT;
@@ -71,8 +71,8 @@ tandem_status payload_handler(void* context, uint64_t, const uint8_t* payload, s
   return tandem_command_list_push(out, &c);
 }
 
-void progress(void* context, uint64_t done, uint64_t total) {
-  auto* calls = static_cast<std::vector<std::pair<uint64_t, uint64_t>>*>(context);
+void progress(void* context, int64_t done, int64_t total) {
+  auto* calls = static_cast<std::vector<std::pair<int64_t, int64_t>>*>(context);
   calls->emplace_back(done, total);
 }
 
@@ -81,10 +81,10 @@ void progress(void* context, uint64_t done, uint64_t total) {
 struct Live {
   tandem_world_id world{};
   tandem_body_id body{};
-  uint64_t nudge_tick = 0;
+  int64_t nudge_tick = 0;
 };
 
-tandem_status live_tick(void* context, uint64_t tick) {
+tandem_status live_tick(void* context, int64_t tick) {
   auto* l = static_cast<Live*>(context);
   const uint8_t p = payload_of(tick);
   if (p != 0) REQUIRE(tandem_body_apply_linear_impulse_to_center(l->body, push_of(p), true) == TANDEM_OK);
@@ -113,16 +113,16 @@ TEST_CASE("verify, seek and diffs with C payload handlers and progress callbacks
 
   // Without a handler the payloads are skipped and the run differs.
   tandem_verify_report report{};
-  REQUIRE(tandem_verify_replay(r, UINT64_MAX, false, &report) == TANDEM_OK);
+  REQUIRE(tandem_verify_replay(r, INT64_MAX, false, &report) == TANDEM_OK);
   CHECK(report.mismatch);
   CHECK(report.skipped_payloads > 0);
   tandem_free_verify_report(&report);
 
   // With the handler every hash matches; progress is reported.
   Handler handler{recording.body, 0, false};
-  std::vector<std::pair<uint64_t, uint64_t>> calls;
+  std::vector<std::pair<int64_t, int64_t>> calls;
   tandem_verify_options options = tandem_default_verify_options();
-  CHECK(options.max_ticks == UINT64_MAX);
+  CHECK(options.max_ticks == INT64_MAX);
   CHECK(options.locate);
   options.payloads = payload_handler;
   options.payload_context = &handler;
@@ -187,13 +187,13 @@ TEST_CASE("verify, seek and diffs with C payload handlers and progress callbacks
   require_error(tandem_diff_replays_with(r, tandem_replay_id{}, nullptr, &diff), TANDEM_ERROR_NULL_HANDLE, "replay");
 
   // A replay against a live run: identical, then nudged after tick 50.
-  for (const uint64_t nudge : {uint64_t{0}, uint64_t{50}}) {
+  for (const int64_t nudge : {int64_t{0}, int64_t{50}}) {
     Live live;
     REQUIRE(tandem_replay_create_world_at(r, 0, &live.world) == TANDEM_OK);
     live.body = recording.body;
     live.body.world = live.world;
     live.nudge_tick = nudge;
-    REQUIRE(tandem_diff_replay_live(r, live.world, live_tick, &live, UINT64_MAX, &diff_options, &diff) == TANDEM_OK);
+    REQUIRE(tandem_diff_replay_live(r, live.world, live_tick, &live, INT64_MAX, &diff_options, &diff) == TANDEM_OK);
     INFO(diff.text);
     CHECK(diff.differs == (nudge != 0));
     CHECK(diff.ticks_compared > 0);

@@ -112,7 +112,7 @@ Outcome run_replay_file(std::span<const uint8_t> data) {
   // snapshot target covers, is skipped).
   static const bool read_only = std::getenv("TANDEM_FUZZ_REPLAY_READ_ONLY") != nullptr;
   if (replay.keyframes.empty() || read_only) return Outcome{true, {}};
-  const uint64_t tick = replay.tick_count() < 30 ? replay.tick_count() : 30;
+  const int64_t tick = replay.tick_count() < 30 ? replay.tick_count() : 30;
   Result<WorldId> w = replay.create_world_at(tick);
   if (w.ok()) {
     step(w.value, 2);
@@ -135,7 +135,7 @@ Outcome run_commands(std::span<const uint8_t> data) {
   setup_faults();
   ByteReader reader(data);
   std::vector<Command> commands;
-  if (!decode_commands(reader, &commands) || !reader.ok()) return refused(reader.error());
+  if (!decode_commands(&reader, &commands).ok() || !reader.ok()) return refused(reader.error());
   // Round trip: the accepted prefix re-encodes to the same bytes.
   std::vector<uint8_t> again;
   ByteWriter writer(&again);
@@ -214,8 +214,9 @@ Outcome run_session_packet(std::span<const uint8_t> data) {
   if (st.ok()) {
     // Round trip: an accepted packet re-encodes to exactly its bytes.
     std::array<uint8_t, k_packet_max_bytes> again{};
-    const size_t n = encode_session_packet(packet, again.data(), again.size());
-    if (n != data.size() || !std::equal(data.begin(), data.end(), again.begin()))
+    size_t n = 0;
+    const Status encoded = encode_session_packet(packet, again.data(), again.size(), &n);
+    if (!encoded.ok() || n != data.size() || !std::equal(data.begin(), data.end(), again.begin()))
       broken("decode_session_packet then encode_session_packet changed the bytes");
   } else if (st.message.empty()) {
     broken("a refusal without a message");
@@ -240,7 +241,7 @@ Outcome run_session_packet(std::span<const uint8_t> data) {
   config.history_ticks = 16;
   SessionCallbacks callbacks;
   callbacks.send = [](uint32_t, std::span<const uint8_t>) {};
-  callbacks.make_commands = [b](uint64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
+  callbacks.make_commands = [b](int64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
     const Q32 push = Q32::from_int(static_cast<int8_t>(in.input(1)[0]));
     out->push_back(make_apply_force_to_center(body_ref(b), Vec2{push, Q32{}}));
     return Status{};

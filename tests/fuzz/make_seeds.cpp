@@ -71,7 +71,7 @@ void write_session_packets(const std::filesystem::path& dir) {
       if (e == 1) from1.emplace_back(p.begin(), p.end());
     };
     const BodyRef ref = body_ref(boxes[e]);
-    cb.make_commands = [ref](uint64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
+    cb.make_commands = [ref](int64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
       out->push_back(make_apply_force_to_center(ref, Vec2{Q32::from_int(static_cast<int8_t>(in.input(1)[0])), Q32{}}));
       return Status{};
     };
@@ -92,8 +92,8 @@ void write_session_packets(const std::filesystem::path& dir) {
     deliver();
   }
   const size_t inputs = from1.size();
-  s[1].request_body_hashes(0, s[1].confirmed_tick(), 0, 2);  // 1 -> 0: request
-  s[0].request_body_hashes(1, s[0].confirmed_tick(), 0, 2);  // 0 -> 1, and 1 answers 0
+  (void)s[1].request_body_hashes(0, s[1].confirmed_tick(), 0, 2);  // 1 -> 0: request
+  (void)s[0].request_body_hashes(1, s[0].confirmed_tick(), 0, 2);  // 0 -> 1, and 1 answers 0
   deliver();
   deliver();
   int n = 0;
@@ -112,7 +112,7 @@ void write_session_packets(const std::filesystem::path& dir) {
   desync.tick = 20;
   desync.hash = 0x0123456789abcdefULL;
   std::vector<uint8_t> bytes;
-  encode_session_packet(desync, &bytes);
+  (void)encode_session_packet(desync, &bytes);  // a valid packet
   write(dir / "desync", bytes);
   for (uint32_t e = 0; e < 2; ++e) (void)destroy_world(worlds[e]);
 }

@@ -397,8 +397,8 @@ void script_scripted(SceneContext& c, int32_t tick) {
       c.check(body_set_linear_velocity(b(1), v(q(1), 0_q32)), "kinematic velocity");
       break;
     case 2400: c.check(body_set_type(b(1), BodyType::dynamic_body), "to dynamic"); break;
-    case 2600: c.check(body_disable(b(2)), "disable"); break;
-    case 2900: c.check(body_enable(b(2)), "enable"); break;
+    case 2600: c.check(body_set_enabled(b(2), false), "disable"); break;
+    case 2900: c.check(body_set_enabled(b(2), true), "enable"); break;
     case 3100: c.check(body_set_fixed_rotation(b(3), true), "fixed rotation"); break;
     case 3300: c.check(body_set_transform(b(4), v(q(0), q(10)), rot_from_angle(q(1))), "teleport"); break;
     case 3400: c.check(body_set_type(b(5), BodyType::static_body), "to static"); break;

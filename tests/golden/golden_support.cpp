@@ -61,7 +61,7 @@ size_t broad_phase_byte() {
 /// one — the same hash of its state image with the broad-phase byte set to
 /// naive's (every kind must give the same state otherwise).
 uint64_t tick_hash(WorldId w, std::vector<uint8_t>& scratch) {
-  if (world_get_broad_phase(w) == BroadPhaseKind::naive) return world_state_hash(w);
+  if (world_broad_phase(w) == BroadPhaseKind::naive) return world_state_hash(w);
   scratch.clear();
   (void)encode_world_state(w, &scratch);
   const size_t at = broad_phase_byte();

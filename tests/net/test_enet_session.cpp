@@ -22,7 +22,7 @@ using namespace tandem::net;
 
 namespace {
 
-net::PeerOptions base_options(uint32_t players, SessionMode mode, uint64_t ticks) {
+net::PeerOptions base_options(uint32_t players, SessionMode mode, int64_t ticks) {
   net::PeerOptions o;
   o.config.mode = mode;
   o.config.player_count = players;
@@ -90,7 +90,7 @@ std::vector<uint64_t> reference(const net::PeerOptions& o) {
 // Every peer records its replay; each must verify, and all peers' replays
 // must hold the same commands and hashes.
 void play_and_check(uint32_t players, SessionMode mode) {
-  const uint64_t ticks = TANDEM_NET_TICKS;
+  const int64_t ticks = TANDEM_NET_TICKS;
   INFO(players << " peers, " << (mode == SessionMode::rollback ? "rollback" : "lockstep") << ", " << ticks << " ticks");
   std::vector<net::PeerOptions> options;
   for (uint32_t e = 0; e < players; ++e) {
@@ -119,7 +119,7 @@ void play_and_check(uint32_t players, SessionMode mode) {
     REQUIRE(r.status.ok());
     REQUIRE(r.stop.state == SessionState::running);
     REQUIRE(r.hashes.size() >= ticks);
-    for (uint64_t t = 1; t <= ticks; ++t) {
+    for (size_t t = 1; t <= static_cast<size_t>(ticks); ++t) {
       INFO("tick " << t);
       REQUIRE(r.hashes[t - 1] == ref[t - 1]);
     }
@@ -146,15 +146,15 @@ void play_and_check(uint32_t players, SessionMode mode) {
     const VerifyReport v = verify_replay(replay, vo);
     INFO(format_verify_report(v));
     CHECK(v.ok());
-    CHECK(v.hashes_checked == replay.tick_count());
-    CHECK(v.game_states_checked == replay.tick_count());
+    CHECK(static_cast<int64_t>(v.hashes_checked) == replay.tick_count());
+    CHECK(static_cast<int64_t>(v.game_states_checked) == replay.tick_count());
     // Every peer recorded the same ticks: the same commands and hashes.
     if (e == 0) continue;
     Replay first;
     REQUIRE(read_replay(results[0].replay, &first).ok());
-    const uint64_t common = std::min(first.tick_count(), replay.tick_count());
+    const int64_t common = std::min(first.tick_count(), replay.tick_count());
     REQUIRE(common >= ticks);
-    for (uint64_t t = 1; t <= common; ++t) {
+    for (int64_t t = 1; t <= common; ++t) {
       INFO("replay tick " << t);
       REQUIRE(replay.tick_record(t).hash == first.tick_record(t).hash);
       REQUIRE(replay.tick_record(t).commands.size() == first.tick_record(t).commands.size());

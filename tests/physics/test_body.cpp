@@ -484,11 +484,11 @@ TEST_CASE("flags: user data, bullet, enable, awake, sleep", "[physics][body]") {
   CHECK_FALSE(body_is_sleep_enabled(body));
 
   // Disabled: does not move; enabled again: falls.
-  REQUIRE(body_disable(body).ok());
+  REQUIRE(body_set_enabled(body, false).ok());
   CHECK_FALSE(body_is_enabled(body));
   run(w.id, 10);
   CHECK(body_position(body) == vec2(0, 0));
-  REQUIRE(body_enable(body).ok());
+  REQUIRE(body_set_enabled(body, true).ok());
   run(w.id, 1);
   CHECK(body_position(body).y < 0_q32);
 

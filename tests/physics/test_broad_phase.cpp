@@ -165,9 +165,9 @@ void random_edit(WorldId id, std::mt19937_64& rng, int64_t half_extent_m) {
       break;
     case 4:
       if (body_is_enabled(b)) {
-        REQUIRE(body_disable(b).ok());
+        REQUIRE(body_set_enabled(b, false).ok());
       } else {
-        REQUIRE(body_enable(b).ok());
+        REQUIRE(body_set_enabled(b, true).ok());
       }
       break;
     default: add_random_body(id, rng, half_extent_m); break;
@@ -229,7 +229,7 @@ TEST_CASE("every broad phase gives the naive pair list in random scenes with edi
         for (int k = 1; k < 4; ++k) {
           INFO(kind_name(k_kinds[k]));
           CHECK(pair_keys(all[k]->id) == reference);
-          const BroadPhaseStats stats = world_get_broad_phase_stats(all[k]->id);
+          const BroadPhaseStats stats = world_broad_phase_stats(all[k]->id);
           CHECK(stats.pairs == static_cast<int32_t>(reference.size()));
           CHECK(stats.pairs <= stats.candidate_pairs);
         }
@@ -360,8 +360,8 @@ TEST_CASE("broad phases handle empty and single-body worlds", "[physics][broad_p
     INFO(kind_name(kind));
     ScopedWorld empty(world_def_with(kind));
     for (int k = 0; k < 3; ++k) REQUIRE(world_step(empty.id, k_dt).ok());
-    CHECK(world_get_broad_phase_stats(empty.id).proxies == 0);
-    CHECK(world_get_broad_phase_stats(empty.id).pairs == 0);
+    CHECK(world_broad_phase_stats(empty.id).proxies == 0);
+    CHECK(world_broad_phase_stats(empty.id).pairs == 0);
 
     ScopedWorld one(world_def_with(kind));
     BodyDef bd = default_body_def();
@@ -370,34 +370,34 @@ TEST_CASE("broad phases handle empty and single-body worlds", "[physics][broad_p
     REQUIRE(b.ok());
     REQUIRE(create_circle_shape(b.value, default_shape_def(), Circle{{}, 0.5_q32}).ok());
     for (int k = 0; k < 3; ++k) REQUIRE(world_step(one.id, k_dt).ok());
-    CHECK(world_get_broad_phase_stats(one.id).proxies == 1);
-    CHECK(world_get_broad_phase_stats(one.id).pairs == 0);
+    CHECK(world_broad_phase_stats(one.id).proxies == 1);
+    CHECK(world_broad_phase_stats(one.id).pairs == 0);
     REQUIRE(destroy_body(b.value).ok());
     REQUIRE(world_step(one.id, k_dt).ok());
-    CHECK(world_get_broad_phase_stats(one.id).proxies == 0);
+    CHECK(world_broad_phase_stats(one.id).proxies == 0);
   }
 }
 
 TEST_CASE("broad-phase selection: settings, refusals and reset", "[physics][broad_phase]") {
   ScopedWorld w;
-  CHECK(world_get_broad_phase(w.id) == BroadPhaseKind::naive);
+  CHECK(world_broad_phase(w.id) == BroadPhaseKind::naive);
   for (const BroadPhaseKind kind : k_kinds) {
     REQUIRE(world_set_broad_phase(w.id, kind).ok());
-    CHECK(world_get_broad_phase(w.id) == kind);
+    CHECK(world_broad_phase(w.id) == kind);
     CHECK(world_def(w.id).broad_phase == kind);
   }
   const Status bad = world_set_broad_phase(w.id, static_cast<BroadPhaseKind>(9));
   CHECK(bad.code == StatusCode::invalid_argument);
   CHECK(bad.message.find("world_set_broad_phase") != std::string::npos);
-  CHECK(world_get_broad_phase(w.id) == BroadPhaseKind::tree);
+  CHECK(world_broad_phase(w.id) == BroadPhaseKind::tree);
   WorldDef def = default_world_def();
   def.broad_phase = static_cast<BroadPhaseKind>(-1);
   const Result<WorldId> refused = create_world(def);
   CHECK(refused.status.code == StatusCode::invalid_argument);
   CHECK(refused.status.message.find("broad_phase") != std::string::npos);
   CHECK(world_set_broad_phase(WorldId{}, BroadPhaseKind::grid).code == StatusCode::null_handle);
-  CHECK(world_get_broad_phase(WorldId{}) == BroadPhaseKind::naive);
-  CHECK(world_get_broad_phase_stats(WorldId{}).proxies == 0);
+  CHECK(world_broad_phase(WorldId{}) == BroadPhaseKind::naive);
+  CHECK(world_broad_phase_stats(WorldId{}).proxies == 0);
 
   // broad_phase_reset drops persistent state; the next update rebuilds it
   // and gives the same pairs.
@@ -449,7 +449,7 @@ TEST_CASE("custom filter: deterministic, after the category test, same for every
     REQUIRE(world_step(w.id, k_dt).ok());
     CHECK(probe.calls > 0);
     CHECK(probe.set_result == StatusCode::world_locked);  // refused while locked
-    CHECK(world_get_broad_phase(w.id) == kind);
+    CHECK(world_broad_phase(w.id) == kind);
     const std::vector<uint64_t> keys = pair_keys(w.id);
     for (const uint64_t key : keys) {
       const uint64_t a = (key >> 32) + 1, b = (key & 0xFFFFFFFFu) + 1;  // index1 = index + 1
@@ -462,7 +462,7 @@ TEST_CASE("custom filter: deterministic, after the category test, same for every
     }
     REQUIRE(world_set_custom_filter(w.id, nullptr, nullptr).ok());
     REQUIRE(world_step(w.id, k_dt).ok());
-    CHECK(world_get_broad_phase_stats(w.id).pairs > static_cast<int32_t>(keys.size()));
+    CHECK(world_broad_phase_stats(w.id).pairs > static_cast<int32_t>(keys.size()));
   }
 }
 
@@ -473,7 +473,7 @@ TEST_CASE("broad-phase stats are consistent", "[physics][broad_phase]") {
     std::mt19937_64 rng(17);
     build_random_scene(w.id, rng, 100, 6);
     for (int k = 0; k < 30; ++k) REQUIRE(world_step(w.id, k_dt).ok());
-    const BroadPhaseStats s = world_get_broad_phase_stats(w.id);
+    const BroadPhaseStats s = world_broad_phase_stats(w.id);
     const World* world = find_world(w.id);
     int32_t expected_proxies = 0;
     for (int32_t i = 0; i < id_pool_capacity(world->shape_pool); ++i) {
@@ -526,7 +526,7 @@ TEST_CASE("the tree stays valid and shallow under churn", "[physics][broad_phase
     for (int k = 0; k < 4; ++k) random_edit(w.id, edits, 20);
     const DynamicTree& tree = find_world(w.id)->broad_phase.tree;
     const int32_t leaves = tree_validate(tree);
-    REQUIRE(leaves == world_get_broad_phase_stats(w.id).proxies);
+    REQUIRE(leaves == world_broad_phase_stats(w.id).proxies);
     // A balanced binary tree of n leaves has height ≈ log2 n; allow 3×.
     int32_t log2n = 0;
     while ((int32_t{1} << log2n) < leaves) ++log2n;
@@ -552,7 +552,7 @@ TEST_CASE("shapes enter the broad phase only inside the checked limits", "[physi
   CHECK(!create_circle_shape(b.value, default_shape_def(), Circle{{k_max_shape_size, 0_q32}, 1_q32}).ok());
   Segment degenerate{{1_q32, 1_q32}, {1_q32, 1_q32}};
   CHECK(!create_segment_shape(b.value, default_shape_def(), degenerate).ok());
-  CHECK(world_get_broad_phase_stats(w.id).proxies == 0);
+  CHECK(world_broad_phase_stats(w.id).proxies == 0);
 }
 
 TEST_CASE("the grid's dense and hashed layouts both match naive", "[physics][broad_phase]") {

@@ -51,7 +51,7 @@ inline Command create_at(BodyType type, Vec2 p, ShapeSpec shape) {
 /// floating ball far away (body 3, gravity scale 0, drifting); later ticks
 /// push bodies around. Body 3 never touches anything, so a perturbation of it
 /// stays in its own record.
-inline std::vector<Command> scene_commands(uint64_t tick) {
+inline std::vector<Command> scene_commands(int64_t tick) {
   std::vector<Command> out;
   if (tick == 1) {
     out.push_back(create_at(BodyType::static_body, {0_q32, -1_q32}, box_spec(10_q32, 1_q32)));
@@ -73,11 +73,11 @@ inline std::vector<Command> scene_commands(uint64_t tick) {
 
 /// How a recording is made.
 struct RecordSpec {
-  uint64_t ticks = 20;
+  int64_t ticks = 20;
   uint32_t keyframe_interval = 5;
   bool hashes = true;
   uint32_t flush_every = 1;
-  uint64_t perturb_tick = 0;     ///< 0: none; else after this tick's step, before its hash
+  int64_t perturb_tick = 0;      ///< 0: none; else after this tick's step, before its hash
   uint32_t perturb_body = 3;     ///< body index perturbed
   bool with_payloads = false;    ///< also record a payload each tick (the game applies its meaning itself)
   BroadPhaseKind broad_phase = BroadPhaseKind::naive;
@@ -85,7 +85,7 @@ struct RecordSpec {
 
 /// What the test game makes of a payload: byte 0 = body index, byte 1 =
 /// impulse in 1/8 N·s upwards.
-inline Status payload_to_commands(uint64_t, std::span<const uint8_t> p, std::vector<Command>* out) {
+inline Status payload_to_commands(int64_t, std::span<const uint8_t> p, std::vector<Command>* out) {
   if (p.size() != 2) return Status{StatusCode::invalid_argument, "payload of " + std::to_string(p.size()) + " bytes"};
   out->push_back(make_apply_linear_impulse_to_center(BodyRef{p[0], 1}, {0_q32, Q32::from_ratio(p[1], 8)}));
   return Status{};
@@ -111,7 +111,7 @@ inline std::vector<uint8_t> record_scene(const RecordSpec& spec) {
   std::vector<uint8_t> state;
   REQUIRE(encode_world_state(world.id, &state).ok());
   REQUIRE(writer.write_header(header, state).ok());
-  for (uint64_t t = 1; t <= spec.ticks; ++t) {
+  for (int64_t t = 1; t <= spec.ticks; ++t) {
     TickRecord rec;
     rec.tick = t;
     rec.commands = scene_commands(t);

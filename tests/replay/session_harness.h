@@ -75,14 +75,14 @@ class SimNet {
 struct RigOptions {
   SessionConfig config;           ///< local_endpoint is set per peer
   NetConditions net;
-  uint64_t ticks = 300;           ///< run until every peer confirmed this many
+  int64_t ticks = 300;            ///< run until every peer confirmed this many
   uint64_t frame_limit = 5000;
   uint64_t bot_seed = 7;
   uint32_t change_every = 4;      ///< bots change input every this many ticks (1: every tick)
   uint32_t crates = 12;
   bool time_sync = true;          ///< skip a frame while frames_ahead() > 0
   uint32_t fast_peer_every = 0;   ///< peer 0 runs an extra frame every this many frames (0: never)
-  uint64_t perturb_tick = 0;      ///< nudge player 0's disc by one raw unit on peer perturb_peer after this tick
+  int64_t perturb_tick = 0;       ///< nudge player 0's disc by one raw unit on peer perturb_peer after this tick
   uint32_t perturb_peer = 1;
   uint64_t silence_peer_at = 0;   ///< from this frame on, peer perturb_peer stops (no frames, no packets)
   uint32_t cut_off_peer = UINT32_MAX;  ///< every packet to this peer is lost in frames [cut_off_from, cut_off_until)
@@ -124,7 +124,7 @@ struct Rig {
       Peer* self = peer.get();
       SessionCallbacks cb = peer->game.callbacks([this, e](uint32_t to, std::span<const uint8_t> bytes) { net.send(e, to, bytes, frame); });
       if (o.perturb_tick != 0 && e == o.perturb_peer) {
-        cb.after_step = [self, t0 = o.perturb_tick](uint64_t tick, WorldId world) {
+        cb.after_step = [self, t0 = o.perturb_tick](int64_t tick, WorldId world) {
           self->game.after_step(tick, world);
           if (tick == t0) {
             const BodyId b = body_id(world, self->game.players[0]);
@@ -152,10 +152,10 @@ struct Rig {
       ++idle_frames;
     } else {
       uint8_t in[arena::k_input_bytes];
-      arena::bot_input(options.bot_seed, e, p.session.current_tick() + 1 + options.config.input_delay, options.change_every, in);
+      arena::bot_input(options.bot_seed, e, p.session.current_tick() + 1 + int64_t{options.config.input_delay}, options.change_every, in);
       (void)p.session.advance_frame(in);
     }
-    for (uint64_t t = p.hashes.size() + 1; t <= p.session.confirmed_tick(); ++t) p.hashes.push_back(p.session.confirmed_hash(t));
+    for (int64_t t = static_cast<int64_t>(p.hashes.size()) + 1; t <= p.session.confirmed_tick(); ++t) p.hashes.push_back(p.session.confirmed_hash(t));
   }
 
   /// Runs until every running peer confirmed options.ticks, one stops, or the frame limit.
@@ -170,8 +170,8 @@ struct Rig {
         if (e == 0 && options.fast_peer_every != 0 && frame % options.fast_peer_every == 0) frame_of(0);
       }
       if (peers.size() >= 2) {
-        const uint64_t a = peers[0]->session.current_tick(), b = peers[1]->session.current_tick();
-        max_tick_gap = std::max(max_tick_gap, a > b ? a - b : b - a);
+        const int64_t a = peers[0]->session.current_tick(), b = peers[1]->session.current_tick();
+        max_tick_gap = std::max(max_tick_gap, static_cast<uint64_t>(a > b ? a - b : b - a));
       }
       bool done = true, stopped = false;
       for (const auto& p : peers) {
@@ -207,7 +207,7 @@ inline std::vector<uint64_t> reference_hashes(const RigOptions& o) {
   std::vector<Command> commands;
   std::vector<uint8_t> game_state;
   std::vector<uint64_t> out;
-  for (uint64_t t = 1; t <= o.ticks; ++t) {
+  for (int64_t t = 1; t <= o.ticks; ++t) {
     for (uint32_t p = 0; p < o.config.player_count; ++p) {
       if (t <= o.config.input_delay) {
         std::fill_n(all.data() + size_t{p} * n, n, uint8_t{0});

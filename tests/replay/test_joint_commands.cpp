@@ -72,7 +72,7 @@ TEST_CASE("joint commands: every type round-trips through its encoding", "[repla
   encode_commands(w, all);
   ByteReader r(bytes);
   std::vector<Command> back;
-  REQUIRE(decode_commands(r, &back));
+  REQUIRE(decode_commands(&r, &back).ok());
   CHECK(r.at_end());
   REQUIRE(back.size() == all.size());
   for (size_t i = 0; i < all.size(); ++i) {
@@ -84,7 +84,7 @@ TEST_CASE("joint commands: every type round-trips through its encoding", "[repla
   for (size_t cut = 0; cut < bytes.size(); ++cut) {
     ByteReader t(std::span<const uint8_t>(bytes.data(), cut));
     std::vector<Command> partial;
-    CHECK_FALSE(decode_commands(t, &partial));
+    CHECK_FALSE(decode_commands(&t, &partial).ok());
   }
   // An unknown joint type names its offset.
   std::vector<uint8_t> one;
@@ -93,7 +93,7 @@ TEST_CASE("joint commands: every type round-trips through its encoding", "[repla
   one[1] = 9;
   ByteReader r1(one);
   Command c;
-  CHECK_FALSE(decode_command(r1, &c));
+  CHECK_FALSE(decode_command(&r1, &c).ok());
   CHECK(r1.error().find("offset 1: expected joint type 0..6, got 9") != std::string::npos);
 }
 

@@ -79,7 +79,7 @@ TEST_CASE("README figures: snapshot and delta sizes of the 1000-body pile", "[re
   build_pile(w.id);
   std::vector<uint8_t> base;
   REQUIRE(encode_world_state(w.id, &base).ok());
-  const BroadPhaseStats stats = world_get_broad_phase_stats(w.id);
+  const BroadPhaseStats stats = world_broad_phase_stats(w.id);
   const long double per_body = static_cast<long double>(base.size()) / k_pile_bodies;
   const long double contact_share =
       static_cast<long double>(tag_offset(base, "TUCH") - tag_offset(base, "CONT")) / static_cast<long double>(base.size());

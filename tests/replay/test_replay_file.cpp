@@ -83,8 +83,8 @@ TEST_CASE("a recorded replay reads back exactly", "[replay][file]") {
   CHECK(r.header.scene_hash == 0x1234);
   REQUIRE(r.tick_count() == 20);
   REQUIRE(r.keyframes.size() == 5);
-  for (size_t i = 0; i < r.keyframes.size(); ++i) CHECK(r.keyframes[i].tick == 5 * i);
-  for (uint64_t t = 1; t <= 20; ++t) {
+  for (size_t i = 0; i < r.keyframes.size(); ++i) CHECK(r.keyframes[i].tick == 5 * static_cast<int64_t>(i));
+  for (int64_t t = 1; t <= 20; ++t) {
     const TickRecord& rec = r.tick_record(t);
     CHECK(rec.tick == t);
     CHECK(rec.has_hash);
@@ -123,7 +123,7 @@ TEST_CASE("a seek from the nearest keyframe equals running from tick 0", "[repla
   Replay only_first = r;
   only_first.keyframes.resize(1);
   const PayloadHandler handler = payload_to_commands;
-  for (uint64_t t = 0; t <= r.tick_count(); ++t) {
+  for (int64_t t = 0; t <= r.tick_count(); ++t) {
     INFO("tick " << t);
     Result<WorldId> a = r.create_world_at(t, handler);
     REQUIRE(a.ok());
@@ -176,12 +176,12 @@ TEST_CASE("a cut at every byte reads up to the last complete tick or fails clean
     REQUIRE(s.ok());
     // The complete chunks before the cut.
     size_t boundary = 0;
-    uint64_t ticks = 0;
+    int64_t ticks = 0;
     size_t keyframes = 0;
     for (const ChunkSpan& c : chunks) {
       if (c.end > cut) break;
       boundary = c.end;
-      ticks += c.ticks_in;
+      ticks += static_cast<int64_t>(c.ticks_in);
       keyframes += c.type == k_chunk_keyframe ? 1 : 0;
     }
     CHECK(info.truncated);
@@ -343,9 +343,9 @@ TEST_CASE("the recorder writes a file that survives a crash", "[replay][file]") 
     const std::string scene = "scene text";
     REQUIRE(rec.begin(world.id, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(scene.data()), scene.size()))
                 .ok());
-    for (uint64_t t = 1; t <= 10; ++t) {
+    for (int64_t t = 1; t <= 10; ++t) {
       for (const Command& c : scene_commands(t)) REQUIRE(rec.submit(c).ok());
-      rec.submit_payload({1, 2});
+      REQUIRE(rec.submit_payload({1, 2}).ok());
       REQUIRE(rec.step().ok());
       // What a crash now would leave on disk.
       Replay r;

@@ -104,7 +104,7 @@ TEST_CASE("replay format 2: game states per tick and per keyframe round-trip, an
   for (uint32_t chunk : {1u, 4u}) {
     const Replay back = read_ok(encode_replay(r, chunk));
     REQUIRE(back.tick_count() == r.tick_count());
-    for (uint64_t t = 1; t <= r.tick_count(); ++t) {
+    for (int64_t t = 1; t <= r.tick_count(); ++t) {
       CHECK(back.tick_record(t).has_game_state == r.tick_record(t).has_game_state);
       CHECK(back.tick_record(t).game_state == r.tick_record(t).game_state);
     }
@@ -150,7 +150,7 @@ TEST_CASE("replay header: the state format version is the tick-0 image's (2 with
 TEST_CASE("verify checks recorded game states with the game's logic", "[replay][verify][version]") {
   Replay r = read_ok(record_scene(RecordSpec{}));
   // The "game": a counter of ticks, as 8 bytes, recorded after every tick.
-  auto counter = [](uint64_t n) {
+  auto counter = [](int64_t n) {
     std::vector<uint8_t> b(8);
     for (size_t i = 0; i < 8; ++i) b[i] = static_cast<uint8_t>(n >> (8 * i));
     return b;
@@ -161,7 +161,7 @@ TEST_CASE("verify checks recorded game states with the game's logic", "[replay][
     t.game_state = counter(100 + t.tick);
   }
   VerifyOptions options;
-  options.game = [](uint64_t, WorldId, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
+  options.game = [](int64_t, WorldId, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
     if (before.size() != 8) return Status{StatusCode::invalid_argument, "expected 8 bytes"};
     uint64_t n = 0;
     for (size_t i = 0; i < 8; ++i) n |= uint64_t{before[i]} << (8 * i);
@@ -174,8 +174,8 @@ TEST_CASE("verify checks recorded game states with the game's logic", "[replay][
   VerifyReport v = verify_replay(back, options);
   INFO(format_verify_report(v));
   CHECK(v.ok());
-  CHECK(v.game_states_recorded == back.tick_count());
-  CHECK(v.game_states_checked == back.tick_count());
+  CHECK(static_cast<int64_t>(v.game_states_recorded) == back.tick_count());
+  CHECK(static_cast<int64_t>(v.game_states_checked) == back.tick_count());
   // Without the logic they are counted, not checked.
   v = verify_replay(back);
   CHECK(v.ok());

@@ -41,15 +41,15 @@ void check_against_reference(Rig& rig, const std::vector<uint64_t>& ref) {
     const Peer& p = *rig.peers[e];
     INFO("peer " << e << ": " << p.session.stop_info().message << " last rejection: " << p.session.stats().last_rejection);
     REQUIRE(p.session.state() == SessionState::running);
-    REQUIRE(p.hashes.size() >= rig.options.ticks);
-    for (uint64_t t = 1; t <= rig.options.ticks; ++t) {
+    REQUIRE(static_cast<int64_t>(p.hashes.size()) >= rig.options.ticks);
+    for (size_t t = 1; t <= static_cast<size_t>(rig.options.ticks); ++t) {
       INFO("tick " << t);
       REQUIRE(p.hashes[t - 1] == ref[t - 1]);
     }
   }
 }
 
-void check_replay_verifies(Session& s, uint64_t min_ticks) {
+void check_replay_verifies(Session& s, int64_t min_ticks) {
   const std::vector<uint8_t> bytes = s.replay_bytes();
   Replay replay;
   ReplayReadInfo info;
@@ -60,7 +60,7 @@ void check_replay_verifies(Session& s, uint64_t min_ticks) {
   const VerifyReport rep = verify_replay(replay);
   INFO(format_verify_report(rep));
   REQUIRE(rep.ok());
-  REQUIRE(rep.hashes_checked == replay.tick_count());
+  REQUIRE(static_cast<int64_t>(rep.hashes_checked) == replay.tick_count());
 }
 
 }  // namespace
@@ -107,7 +107,7 @@ TEST_CASE("session: rollback with every prediction wrong equals lockstep", "[rep
   CHECK(st.rollbacks > 20);
   CHECK(st.max_rollback_depth >= 3);  // latency 3…5 frames
   CHECK(st.max_rollback_depth <= o.config.prediction_window);
-  CHECK(st.ticks_simulated == rollback.peers[0]->session.current_tick() + st.resimulated_ticks);
+  CHECK(st.ticks_simulated == static_cast<uint64_t>(rollback.peers[0]->session.current_tick()) + st.resimulated_ticks);
 }
 
 TEST_CASE("session: spectators follow the confirmed inputs", "[replay][session]") {
@@ -184,7 +184,7 @@ TEST_CASE("session: rollback stalls at the prediction window instead of running 
     rig.frame_of(0);
   }
   Session& s = rig.peers[0]->session;
-  uint64_t known = s.confirmed_tick();
+  int64_t known = s.confirmed_tick();
   CHECK(s.current_tick() == known + o.config.prediction_window);
   CHECK(s.stats().stalls > stalls_before + 20);
   // Player 1 comes back: both continue and still match the reference.
@@ -278,16 +278,24 @@ TEST_CASE("session: a one-raw-unit desync stops every peer at its tick and is lo
 
     // Per-body hashes on request name the same body.
     Session& s0 = rig.peers[0]->session;
-    s0.request_body_hashes(1, 150, 0, 512);
+    REQUIRE(s0.request_body_hashes(1, 150, 0, 512).ok());
     for (int i = 0; i < 20 && rig.peers[0]->session.remote_body_hashes().hashes.empty(); ++i) {
       ++rig.frame;
       rig.net.deliver(1, rig.frame, [&](uint32_t from, std::span<const uint8_t> b) { rig.peers[1]->session.receive(from, b); });
       rig.net.deliver(0, rig.frame, [&](uint32_t from, std::span<const uint8_t> b) { rig.peers[0]->session.receive(from, b); });
-      if (rig.peers[0]->session.remote_body_hashes().hashes.empty() && i % 5 == 4) s0.request_body_hashes(1, 150, 0, 512);
+      if (rig.peers[0]->session.remote_body_hashes().hashes.empty() && i % 5 == 4) REQUIRE(s0.request_body_hashes(1, 150, 0, 512).ok());
     }
     const Session::BodyHashes& remote = s0.remote_body_hashes();
     REQUIRE_FALSE(remote.hashes.empty());
     CHECK(remote.tick == 150);
+    // Ticks are int64_t: negative or past the packet's u32 field is refused by name.
+    CHECK(s0.request_body_hashes(1, -1, 0, 1).message ==
+          "Session::request_body_hashes: tick -1 outside 0…4294967295");
+    CHECK(s0.request_body_hashes(1, int64_t{1} << 32, 0, 1).message.find("tick 4294967296 outside") != std::string::npos);
+    CHECK(s0.request_body_hashes(0, 150, 0, 1).message.find("endpoint 0 is not a remote endpoint") != std::string::npos);
+    std::vector<uint8_t> image;
+    CHECK(s0.state_image(-3, &image).message == "tick -3 is negative");
+    CHECK(s0.confirmed_hash(-1) == 0);
     std::vector<uint64_t> local;
     REQUIRE(s0.local_body_hashes(150, &local).ok());
     REQUIRE(local.size() == remote.hashes.size());
@@ -338,13 +346,13 @@ TEST_CASE("session: refused packets are counted, never applied", "[replay][sessi
   p.sender = 0;
   p.sequence = 1000;
   std::vector<uint8_t> bytes;
-  encode_session_packet(p, &bytes);
+  REQUIRE(encode_session_packet(p, &bytes).ok());
   s.receive(1, bytes);
   CHECK(s.stats().last_rejection.find("claims endpoint 0") != std::string::npos);
   p.sender = 1;
   p.session_id = 99;
   bytes.clear();
-  encode_session_packet(p, &bytes);
+  REQUIRE(encode_session_packet(p, &bytes).ok());
   s.receive(1, bytes);
   CHECK(s.stats().last_rejection.find("session id 99") != std::string::npos);
   // An input contradicting one already received for the same tick.
@@ -356,7 +364,7 @@ TEST_CASE("session: refused packets are counted, never applied", "[replay][sessi
   arena::bot_input(o.bot_seed, 1, 5, o.change_every, real);
   for (uint32_t i = 0; i < arena::k_input_bytes; ++i) p.inputs[i] = static_cast<uint8_t>(real[i] ^ 0x55);
   bytes.clear();
-  encode_session_packet(p, &bytes);
+  REQUIRE(encode_session_packet(p, &bytes).ok());
   s.receive(1, bytes);
   CHECK(s.stats().last_rejection.find("different input for tick 5") != std::string::npos);
   // Truncated garbage.
@@ -376,7 +384,7 @@ TEST_CASE("session: config errors name the field and range", "[replay][session]"
   REQUIRE(w.ok());
   SessionCallbacks cb;
   cb.send = [](uint32_t, std::span<const uint8_t>) {};
-  cb.make_commands = [](uint64_t, const SessionTickInputs&, WorldId, std::vector<Command>*) { return Status{}; };
+  cb.make_commands = [](int64_t, const SessionTickInputs&, WorldId, std::vector<Command>*) { return Status{}; };
   auto message = [&](auto edit) {
     SessionConfig c;
     edit(c);

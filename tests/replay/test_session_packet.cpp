@@ -46,7 +46,7 @@ std::string refusal(const std::vector<uint8_t>& bytes, SessionPacketLimits limit
 TEST_CASE("session packets round-trip, little-endian at stated offsets", "[replay][session][packet]") {
   const SessionPacket p = sample_input();
   std::vector<uint8_t> bytes;
-  encode_session_packet(p, &bytes);
+  REQUIRE(encode_session_packet(p, &bytes).ok());
   REQUIRE(bytes.size() == k_packet_header_bytes + 16 + 6 + 12 + 5 + 16);
   CHECK(bytes[0] == 'T');
   CHECK(bytes[1] == 'S');
@@ -57,9 +57,14 @@ TEST_CASE("session packets round-trip, little-endian at stated offsets", "[repla
   CHECK(bytes[12] == 1);    // sender
   CHECK(bytes[13] == 77);   // sequence
   uint8_t fixed[k_packet_max_bytes];
-  REQUIRE(encode_session_packet(p, fixed, sizeof fixed) == bytes.size());
+  size_t written = 0;
+  REQUIRE(encode_session_packet(p, fixed, sizeof fixed, &written).ok());
+  REQUIRE(written == bytes.size());
   CHECK(std::vector<uint8_t>(fixed, fixed + bytes.size()) == bytes);
-  CHECK(encode_session_packet(p, fixed, bytes.size() - 1) == 0);
+  const Status small = encode_session_packet(p, fixed, bytes.size() - 1, &written);
+  CHECK(small.code == StatusCode::capacity_exceeded);
+  CHECK(written == 0);
+  CHECK(small.message.find(std::to_string(bytes.size())) != std::string::npos);
 
   SessionPacket q;
   REQUIRE(decode_session_packet(bytes.data(), bytes.size(), {2, 4}, &q).ok());
@@ -82,7 +87,7 @@ TEST_CASE("session packets round-trip, little-endian at stated offsets", "[repla
   d.tick = 150;
   d.hash = 9;
   bytes.clear();
-  encode_session_packet(d, &bytes);
+  REQUIRE(encode_session_packet(d, &bytes).ok());
   REQUIRE(decode_session_packet(bytes.data(), bytes.size(), {}, &q).ok());
   CHECK(q.type == SessionPacketType::desync);
   CHECK(q.tick == 150);
@@ -96,7 +101,7 @@ TEST_CASE("session packets round-trip, little-endian at stated offsets", "[repla
   r.body_count = 2;
   r.body_hash_bytes = hb;
   bytes.clear();
-  encode_session_packet(r, &bytes);
+  REQUIRE(encode_session_packet(r, &bytes).ok());
   REQUIRE(decode_session_packet(bytes.data(), bytes.size(), {}, &q).ok());
   CHECK(q.body_count == 2);
   CHECK(q.first_body == 5);
@@ -106,7 +111,7 @@ TEST_CASE("session packets round-trip, little-endian at stated offsets", "[repla
 
 TEST_CASE("session packet decoder names the offset and field of every refusal", "[replay][session][packet]") {
   std::vector<uint8_t> good;
-  encode_session_packet(sample_input(), &good);
+  REQUIRE(encode_session_packet(sample_input(), &good).ok());
   const SessionPacketLimits limits{2, 4};
 
   // Every truncation is refused and names where the missing field starts.
@@ -148,7 +153,7 @@ TEST_CASE("session packet decoder names the offset and field of every refusal", 
     p.input_count = 0;
     p.first_input_tick = 0;
     std::vector<uint8_t> b;
-    encode_session_packet(p, &b);
+    REQUIRE(encode_session_packet(p, &b).ok());
     REQUIRE(refusal(b, limits) == "ok");
     b[38] = 2;
     CHECK(refusal(b, limits) == "offset 38: expected input bytes 0 with an input count of 0, got 2");
@@ -165,7 +170,7 @@ TEST_CASE("session packet decoder names the offset and field of every refusal", 
     r.type = SessionPacketType::body_hash_request;
     r.body_count = 512;
     std::vector<uint8_t> b;
-    encode_session_packet(r, &b);
+    REQUIRE(encode_session_packet(r, &b).ok());
     CHECK(refusal(b) == "ok");
     b[27] = 0x02;  // body count 512 + 2 · 65536
     CHECK(refusal(b) == "offset 25: expected body count at most 512, got 131584");
@@ -193,4 +198,37 @@ TEST_CASE("session packet decoder names the offset and field of every refusal", 
       REQUIRE(out.hash_count <= k_packet_max_hashes);
     }
   }
+}
+
+TEST_CASE("session packet ticks are int64_t, refused outside the u32 wire range by name", "[replay][session][packet]") {
+  SessionPacket d;
+  d.type = SessionPacketType::desync;
+  d.tick = -1;
+  std::vector<uint8_t> bytes;
+  Status s = encode_session_packet(d, &bytes);
+  CHECK(s.code == StatusCode::invalid_argument);
+  CHECK(s.message == "session packet: tick -1 outside the encodable range 0…4294967295");
+  CHECK(bytes.empty());  // nothing written on a refusal
+  d.tick = int64_t{UINT32_MAX} + 1;
+  uint8_t buffer[k_packet_max_bytes];
+  size_t written = 7;
+  s = encode_session_packet(d, buffer, sizeof buffer, &written);
+  CHECK(s.message == "session packet: tick 4294967296 outside the encodable range 0…4294967295");
+  CHECK(written == 0);
+  // The largest encodable tick round-trips exactly.
+  d.tick = int64_t{UINT32_MAX};
+  REQUIRE(encode_session_packet(d, &bytes).ok());
+  SessionPacket back;
+  REQUIRE(decode_session_packet(bytes.data(), bytes.size(), {}, &back).ok());
+  CHECK(back.tick == int64_t{UINT32_MAX});
+
+  SessionPacket p = sample_input();
+  p.sender_tick = -5;
+  CHECK(check_session_packet(p).message == "session packet: sender tick -5 outside the encodable range 0…4294967295");
+  p = sample_input();
+  p.first_input_tick = int64_t{UINT32_MAX};  // + input_count − 1 passes the u32 range
+  CHECK(check_session_packet(p).message.rfind("session packet: first input tick 4294967295 outside 1…", 0) == 0);
+  p = sample_input();
+  p.input_count = k_packet_max_inputs + 1;
+  CHECK(check_session_packet(p).message == "session packet: input count 33, expected at most 32");
 }

@@ -42,7 +42,7 @@ Status start_peer(Peer& peer, uint32_t my_endpoint, std::function<void(uint32_t,
   config.record_replay = true;           // `tandem verify` accepts session.replay_bytes()
   SessionCallbacks callbacks;
   callbacks.send = std::move(send);      // unreliable datagrams are enough
-  callbacks.make_commands = [&peer](uint64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
+  callbacks.make_commands = [&peer](int64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) {
     for (uint32_t p = 0; p < in.player_count; ++p) {  // deterministic: runs again after a rollback
       const Q32 push = Q32::from_int(static_cast<int8_t>(in.input(p)[0]));
       out->push_back(make_apply_force_to_center(peer.discs[p], Vec2{push, 0_q32}));
@@ -95,7 +95,7 @@ TEST_CASE("the README session example runs as written", "[replay][session][readm
   }
   REQUIRE(peers[0].session.state() == SessionState::running);
   REQUIRE(peers[1].session.state() == SessionState::running);
-  const uint64_t t = std::min(peers[0].session.confirmed_tick(), peers[1].session.confirmed_tick());
+  const int64_t t = std::min(peers[0].session.confirmed_tick(), peers[1].session.confirmed_tick());
   REQUIRE(t >= 150);
   CHECK(peers[0].session.confirmed_hash(t) == peers[1].session.confirmed_hash(t));
   Replay replay;

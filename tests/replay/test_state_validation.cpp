@@ -341,7 +341,7 @@ TEST_CASE("state validation: a replay whose keyframe has valid checksums and an 
   header.tick_hashes = false;
   header.keyframe_interval = 0;
   REQUIRE(writer.write_header(header, image).ok());
-  for (uint64_t t = 1; t <= 30; ++t) {
+  for (int64_t t = 1; t <= 30; ++t) {
     TickRecord rec;
     rec.tick = t;
     REQUIRE(writer.append_tick(rec).ok());

@@ -35,8 +35,8 @@ TEST_CASE("a recorded run verifies", "[replay][verify]") {
   SECTION("max_ticks limits the check") {
     VerifyOptions o;
     o.max_ticks = 12;
-    uint64_t last_progress = 0;
-    o.progress = [&](uint64_t done, uint64_t total) {
+    int64_t last_progress = 0;
+    o.progress = [&](int64_t done, int64_t total) {
       CHECK(total == 12);
       last_progress = done;
     };
@@ -88,7 +88,7 @@ TEST_CASE("user payloads go through the callback", "[replay][verify]") {
   CHECK(ok.skipped_payloads == 0);
   // A callback that fails stops the run with an error (exit code 2).
   VerifyOptions failing;
-  failing.payloads = [](uint64_t, std::span<const uint8_t>, std::vector<Command>*) {
+  failing.payloads = [](int64_t, std::span<const uint8_t>, std::vector<Command>*) {
     return Status{StatusCode::invalid_argument, "unknown input"};
   };
   const VerifyReport err = verify_replay(r, failing);
@@ -166,8 +166,8 @@ TEST_CASE("a one-raw-unit desync is found at its tick, body and field", "[replay
   SECTION("a replay against a live run: exact at any tick") {
     OwnedWorld live;
     REQUIRE(world_restore(live.id, clean.keyframes[0].state.data(), clean.keyframes[0].state.size()).ok());
-    const uint64_t perturb = 13;
-    const LiveTick advance = [&](uint64_t t) {
+    const int64_t perturb = 13;
+    const LiveTick advance = [&](int64_t t) {
       for (const Command& c : scene_commands(t)) (void)apply_command(live.id, c);
       StepResult s = world_step(live.id, clean.header.time_step);
       if (!s.ok()) return s.status;

@@ -670,7 +670,7 @@ class Driver {
         note(body_set_awake(b, s_.rng.chance(50)));
         break;
       case k_op_enable:
-        note(body_is_enabled(b) ? body_disable(b) : body_enable(b));
+        note(body_set_enabled(b, !body_is_enabled(b)));
         break;
       case k_op_flags:
         if (s_.rng.chance(50)) note(body_set_bullet(b, !body_is_bullet(b)));

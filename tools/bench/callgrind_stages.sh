@@ -28,7 +28,7 @@
 #   other          the rest of world_step (approach, store, continuous,
 #                  finalize, sleep, events) and the step loop
 # Per contact = per touching pair (a contact with ≥ 1 manifold point), the
-# mean over the collected steps as world_get_broad_phase_stats reports it.
+# mean over the collected steps as world_broad_phase_stats reports it.
 set -euo pipefail
 
 scene=pyramid-100

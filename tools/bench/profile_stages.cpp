@@ -37,7 +37,7 @@ extern "C" __attribute__((noinline)) void tandem_profile_timed_steps(WorldId wor
       out->failed_step = i;
       return;
     }
-    const BroadPhaseStats s = world_get_broad_phase_stats(world);
+    const BroadPhaseStats s = world_broad_phase_stats(world);
     out->pairs += s.pairs;
     out->touching_pairs += s.touching_pairs;
   }

@@ -175,7 +175,7 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
   Replay replay;
   ReplayReadInfo info;
   if (int rc = load_replay("replay", a.file, &replay, &info)) return rc;
-  const uint64_t ticks = a.ticks >= 0 ? static_cast<uint64_t>(a.ticks) : replay.tick_count();
+  const int64_t ticks = a.ticks >= 0 ? a.ticks : replay.tick_count();
   if (ticks > replay.tick_count())
     return fail("replay", a.file + ": --ticks " + std::to_string(ticks) + " is past the last recorded tick " +
                               std::to_string(replay.tick_count()));
@@ -184,10 +184,10 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
   OwnedWorld world{created.value};
   ProgressBar progress("replay", quiet || json);
   uint32_t refused = 0, skipped = 0;
-  for (uint64_t t = 1; t <= ticks; ++t) {
+  for (int64_t t = 1; t <= ticks; ++t) {
     const Status s = run_tick(world.id, replay.tick_record(t), replay.header.time_step, {}, &refused, &skipped);
     if (!s.ok()) return fail("replay", a.file + ": " + s.message);
-    progress.update(t, ticks);
+    progress.update(static_cast<uint64_t>(t), static_cast<uint64_t>(ticks));
   }
   progress.finish();
   const uint64_t hash = world_state_hash(world.id);
@@ -216,16 +216,16 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
     return 0;
   }
   if (!quiet) {
-    std::printf("replay %s: %" PRIu64 " of %" PRIu64 " recorded ticks, %zu keyframes, time step %s s\n", a.file.c_str(),
+    std::printf("replay %s: %" PRId64 " of %" PRId64 " recorded ticks, %zu keyframes, time step %s s\n", a.file.c_str(),
                 ticks, replay.tick_count(), replay.keyframes.size(), q32_raw_text(replay.header.time_step.raw).c_str());
     if (has_recorded)
-      std::printf("recorded hash at tick %" PRIu64 ": %s (%s)\n", ticks, hex64(recorded).c_str(),
+      std::printf("recorded hash at tick %" PRId64 ": %s (%s)\n", ticks, hex64(recorded).c_str(),
                   recorded == hash ? "matches" : "DIFFERS: run tandem verify");
     if (refused != 0) std::printf("commands refused (as when recorded): %u\n", refused);
     if (skipped != 0) std::printf("user input payloads skipped (the game's meaning is unknown here): %u\n", skipped);
     if (!a.save_state.empty()) std::printf("state written to %s\n", a.save_state.c_str());
   }
-  std::printf("final tick %" PRIu64 "  hash %s\n", ticks, hex64(hash).c_str());
+  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hex64(hash).c_str());
   return 0;
 }
 
@@ -324,11 +324,11 @@ std::string verdict_line(const FileVerdict& v) {
   char buf[160];
   if (v.rc == 2) return "ERROR     " + v.error;  // the message names the file
   if (!rep.mismatch) {
-    std::snprintf(buf, sizeof buf, ": %" PRIu64 " ticks, %" PRIu64 " hashes, %" PRIu64 " keyframes", rep.ticks_run,
+    std::snprintf(buf, sizeof buf, ": %" PRId64 " ticks, %" PRIu64 " hashes, %" PRIu64 " keyframes", rep.ticks_run,
                   rep.hashes_checked, rep.keyframes_checked);
     return "OK        " + v.file + buf + (v.truncated ? " (truncated file)" : "");
   }
-  std::snprintf(buf, sizeof buf, ": tick %" PRIu64 ", expected %s, got %s", rep.mismatch_tick,
+  std::snprintf(buf, sizeof buf, ": tick %" PRId64 ", expected %s, got %s", rep.mismatch_tick,
                 hex64(rep.expected_hash).c_str(), hex64(rep.actual_hash).c_str());
   std::string line = "MISMATCH  " + v.file + buf;
   if (rep.located) line += "; at tick " + std::to_string(rep.located_tick) + ": " + rep.difference.describe();
@@ -338,7 +338,7 @@ std::string verdict_line(const FileVerdict& v) {
 int run_verify_one(const std::string& file, bool json, bool quiet) {
   ProgressBar progress("verify", quiet || json);
   const FileVerdict v =
-      verify_file(file, [&progress](uint64_t done, uint64_t total) { progress.update(done, total); });
+      verify_file(file, [&progress](int64_t done, int64_t total) { progress.update(static_cast<uint64_t>(done), static_cast<uint64_t>(total)); });
   progress.finish();
   if (v.rc == 2) return fail("verify", v.error);
   if (!v.warning.empty()) std::fprintf(stderr, "tandem verify: warning: %s\n", v.warning.c_str());
@@ -349,9 +349,9 @@ int run_verify_one(const std::string& file, bool json, bool quiet) {
   }
   if (quiet) {
     if (rep.mismatch)
-      std::printf("MISMATCH at tick %" PRIu64 "\n", rep.mismatch_tick);
+      std::printf("MISMATCH at tick %" PRId64 "\n", rep.mismatch_tick);
     else
-      std::printf("OK %" PRIu64 " ticks\n", rep.ticks_run);
+      std::printf("OK %" PRId64 " ticks\n", rep.ticks_run);
     return v.rc;
   }
   std::printf("verify %s\n%s", file.c_str(), format_verify_report(rep).c_str());
@@ -444,7 +444,7 @@ int run_diff(const DiffArgs& a, const GlobalOptions& g) {
     if (!ia.warning.empty()) std::fprintf(stderr, "tandem diff: warning: %s: %s\n", a.a.c_str(), ia.warning.c_str());
     if (!ib.warning.empty()) std::fprintf(stderr, "tandem diff: warning: %s: %s\n", a.b.c_str(), ib.warning.c_str());
     DiffOptions options;
-    options.progress = [&progress](uint64_t done, uint64_t total) { progress.update(done, total); };
+    options.progress = [&progress](int64_t done, int64_t total) { progress.update(static_cast<uint64_t>(done), static_cast<uint64_t>(total)); };
     rep = diff_replays(ra, rb, options);
   } else if (!replay_a && !replay_b) {
     rep = diff_snapshots(bytes_a, bytes_b);
@@ -502,9 +502,8 @@ int run_sync(const SyncArgs& a, const GlobalOptions& g) {
   LoadedScene s;
   if (int rc = load_scene("synctest", a.scene, g.scene_limits, &s)) return rc;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
-  if (ticks > INT32_MAX) return fail("synctest", "--ticks " + std::to_string(ticks) + " is too many (at most 2^31 - 1)");
   SyncTestOptions options;
-  options.ticks = static_cast<int32_t>(ticks);
+  options.ticks = ticks;
   options.rollback = a.rollback;
   options.time_step = s.scene.time_step;
   Status input_error;

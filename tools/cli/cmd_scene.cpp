@@ -123,8 +123,8 @@ int open_session(const std::string& command, const std::string& path, const std:
 // Applies the inputs of the current tick and steps once; prints errors itself.
 int step_once(const std::string& command, Session* s, bool timed) {
   if (s->from_replay) {
-    if (s->tick >= static_cast<int64_t>(s->replay.tick_count())) {
-      std::fprintf(stderr, "tandem %s: %s: the replay ends at tick %" PRIu64 "\n", command.c_str(), s->scene.name.c_str(),
+    if (s->tick >= s->replay.tick_count()) {
+      std::fprintf(stderr, "tandem %s: %s: the replay ends at tick %" PRId64 "\n", command.c_str(), s->scene.name.c_str(),
                    s->replay.tick_count());
       return 2;
     }

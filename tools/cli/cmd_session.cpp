@@ -45,12 +45,12 @@ struct PlayArgs {
   std::string artifacts_dir = ".";
   // both
   std::string mode = "rollback";
-  uint64_t ticks = 600;
+  int64_t ticks = 600;
   uint32_t delay = 2, window = 8;
   double loss = 0;  // percent (tools only: turned into per-mille)
   uint32_t latency = 0, jitter = 0;
   uint64_t seed = 1;
-  uint64_t inject_desync = 0;
+  int64_t inject_desync = 0;
   uint32_t frame_us = 16667;
   uint32_t crates = 40;
   std::string scene;  // --scene: the arena's walls and crates from a scene file
@@ -134,7 +134,7 @@ int report(const char* command, const PlayArgs& a, const std::vector<net::PeerRe
     Json peers = Json::array();
     for (size_t e = 0; e < results.size(); ++e) {
       const net::PeerResult& r = results[e];
-      const uint64_t ticks = r.confirmed_tick == 0 ? 1 : r.confirmed_tick;
+      const uint64_t ticks = r.confirmed_tick <= 0 ? 1 : static_cast<uint64_t>(r.confirmed_tick);
       Json p;
       p["endpoint"] = a.peers.empty() ? e : a.endpoint;
       p["state"] = session_state_name(r.stop.state);
@@ -160,8 +160,8 @@ int report(const char* command, const PlayArgs& a, const std::vector<net::PeerRe
                 "B/tick", "rejected", "final hash");
     for (size_t e = 0; e < results.size(); ++e) {
       const net::PeerResult& r = results[e];
-      const uint64_t ticks = r.confirmed_tick == 0 ? 1 : r.confirmed_tick;
-      std::printf("%-8zu %-9s %7" PRIu64 " %9" PRIu64 " %6" PRIu64 " %7" PRIu64 " %7" PRIu64 " %11" PRIu64 "  %s\n",
+      const uint64_t ticks = r.confirmed_tick <= 0 ? 1 : static_cast<uint64_t>(r.confirmed_tick);
+      std::printf("%-8zu %-9s %7" PRId64 " %9" PRIu64 " %6" PRIu64 " %7" PRIu64 " %7" PRIu64 " %11" PRIu64 "  %s\n",
                   a.peers.empty() ? e : size_t{a.endpoint}, session_state_name(r.stop.state), r.confirmed_tick,
                   r.stats.rollbacks, r.stats.max_rollback_depth, r.stats.stalls, r.transport.bytes_sent / ticks,
                   r.stats.packets_rejected, hex(r.final_hash).c_str());
@@ -171,7 +171,7 @@ int report(const char* command, const PlayArgs& a, const std::vector<net::PeerRe
       if (r.stop.state != SessionState::running) std::printf("endpoint %zu: %s\n", a.peers.empty() ? e : size_t{a.endpoint}, r.stop.message.c_str());
       for (const std::string& f : r.artifacts) std::printf("wrote %s\n", f.c_str());
     }
-    if (diffed) std::printf("first difference at tick %" PRIu64 ": %s\n", results[0].stop.tick, diff.located ? diff.difference.describe().c_str() : "not located");
+    if (diffed) std::printf("first difference at tick %" PRId64 ": %s\n", results[0].stop.tick, diff.located ? diff.difference.describe().c_str() : "not located");
     if (results.size() > 1) std::printf("%s\n", in_sync ? "in sync: every peer ended with the same hash" : "NOT in sync");
   }
   return in_sync ? 0 : 1;
@@ -218,7 +218,7 @@ int run_session(PlayArgs& a, const GlobalOptions& g) {
   std::vector<net::PeerResult> results(1);
   net::PeerOptions o = peer_options(a, n, a.endpoint, a.artifacts_dir + "/peer" + std::to_string(a.endpoint));
   ProgressBar bar("session", quiet || json);
-  o.progress = [&bar](uint64_t done, uint64_t total) { bar.update(done, total); };
+  o.progress = [&bar](int64_t done, int64_t total) { bar.update(static_cast<uint64_t>(done), static_cast<uint64_t>(total)); };
   net::run_peer(transport, o, &results[0]);
   bar.finish();
   return report("session", a, results, json);
@@ -260,7 +260,7 @@ int run_netplay(PlayArgs& a, const GlobalOptions& g) {
 
 void add_common(CLI::App* c, PlayArgs* a) {
   c->add_option("--mode", a->mode, "rollback (default) or lockstep");
-  c->add_option("--ticks", a->ticks, "ticks to play (default 600 = 10 s at 60 Hz)")->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
+  c->add_option("--ticks", a->ticks, "ticks to play (default 600 = 10 s at 60 Hz)")->check(CLI::Range(int64_t{1}, int64_t{1} << 31));
   c->add_option("--delay", a->delay, "input delay K in ticks (default 2)")->check(CLI::Range(0, 30));
   c->add_option("--window", a->window, "rollback: prediction window in ticks (default 8)")->check(CLI::Range(1, 30));
   c->add_option("--loss", a->loss, "simulated loss of input packets, percent (default 0)");

@@ -110,9 +110,9 @@ int run_state(const StateArgs& a, const GlobalOptions& g) {
     ReplayReadInfo info;
     if (Status s = read_replay_file(a.file, &replay, &info); !s.ok()) return fail(s.message);
     if (!info.warning.empty()) std::fprintf(stderr, "tandem state: warning: %s\n", info.warning.c_str());
-    const uint64_t last = replay.tick_count();
-    const int64_t tick = a.tick >= 0 ? a.tick : static_cast<int64_t>(last);
-    if (static_cast<uint64_t>(tick) > last)
+    const int64_t last = replay.tick_count();
+    const int64_t tick = a.tick >= 0 ? a.tick : last;
+    if (tick > last)
       return fail(a.file + ": --tick " + std::to_string(tick) + " is past the last recorded tick " +
                   std::to_string(last));
     Result<WorldId> created =
@@ -121,7 +121,7 @@ int run_state(const StateArgs& a, const GlobalOptions& g) {
     const WorldId world = created.value;
     int rc = 0;
     for (int64_t t = 1; t <= tick && rc == 0; ++t) {
-      const Status s = run_tick(world, replay.tick_record(static_cast<uint64_t>(t)), replay.header.time_step);
+      const Status s = run_tick(world, replay.tick_record(t), replay.header.time_step);
       if (!s.ok()) rc = fail(a.file + ": tick " + std::to_string(t) + ": " + s.message);
     }
     if (rc == 0) rc = print_state(world, tick, a, json);

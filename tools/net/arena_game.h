@@ -103,7 +103,7 @@ struct Game {
   }
 
   /// The session's make_commands: one force per player (and a dash impulse).
-  Status make_commands(uint64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) const {
+  Status make_commands(int64_t, const SessionTickInputs& in, WorldId, std::vector<Command>* out) const {
     for (uint32_t p = 0; p < in.player_count && p < players.size(); ++p) {
       const std::span<const uint8_t> b = in.input(p);
       const Vec2 f{Q32::from_ratio(static_cast<int8_t>(b[0]), 2), Q32::from_ratio(static_cast<int8_t>(b[1]), 2)};
@@ -114,7 +114,7 @@ struct Game {
   }
 
   /// The session's after_step: scores.
-  void after_step(uint64_t, WorldId world) {
+  void after_step(int64_t, WorldId world) {
     for (size_t p = 0; p < players.size(); ++p) {
       const Vec2 x = body_position(body_id(world, players[p]));
       if (abs(x.x) < 2_q32 && abs(x.y) < 2_q32) ++scores[p];
@@ -154,10 +154,10 @@ struct Game {
   SessionCallbacks callbacks(std::function<void(uint32_t, std::span<const uint8_t>)> send) {
     SessionCallbacks c;
     c.send = std::move(send);
-    c.make_commands = [this](uint64_t t, const SessionTickInputs& in, WorldId w, std::vector<Command>* out) {
+    c.make_commands = [this](int64_t t, const SessionTickInputs& in, WorldId w, std::vector<Command>* out) {
       return make_commands(t, in, w, out);
     };
-    c.after_step = [this](uint64_t t, WorldId w) { after_step(t, w); };
+    c.after_step = [this](int64_t t, WorldId w) { after_step(t, w); };
     c.save_game = [this](std::vector<uint8_t>* out) { save(out); };
     c.load_game = [this](std::span<const uint8_t> s) { load(s); };
     return c;
@@ -191,11 +191,11 @@ inline bool parse_replay_scene(std::span<const uint8_t> bytes, uint32_t* player_
 /// from the recorded start, one after_step per tick, for the discs named by
 /// replay_scene().
 inline Status verify_game_step(uint32_t player_count, uint32_t first_disc,
-                               std::function<Status(uint64_t, WorldId, std::span<const uint8_t>, std::vector<uint8_t>*)>* out) {
+                               std::function<Status(int64_t, WorldId, std::span<const uint8_t>, std::vector<uint8_t>*)>* out) {
   auto game = std::make_shared<Game>();
   for (uint32_t p = 0; p < player_count; ++p) game->players.push_back(BodyRef{first_disc + p, 1});
   game->scores.assign(player_count, 0);
-  *out = [game](uint64_t tick, WorldId world, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
+  *out = [game](int64_t tick, WorldId world, std::span<const uint8_t> before, std::vector<uint8_t>* after) {
     if (before.size() != game->scores.size() * 8)
       return Status{StatusCode::invalid_argument, "arena game state of " + std::to_string(before.size()) +
                                                       " bytes, expected " + std::to_string(game->scores.size() * 8)};
@@ -208,8 +208,9 @@ inline Status verify_game_step(uint32_t player_count, uint32_t first_disc,
 }
 
 /// A bot's input for `tick`: a pure function of (seed, player, tick / change_every).
-inline void bot_input(uint64_t seed, uint32_t player, uint64_t tick, uint32_t change_every, uint8_t out[k_input_bytes]) {
-  uint64_t state = seed ^ (uint64_t{player} * 0xD1B54A32D192ED03ull) ^ ((tick / (change_every == 0 ? 1 : change_every)) * 0x9E3779B97F4A7C15ull);
+inline void bot_input(uint64_t seed, uint32_t player, int64_t tick, uint32_t change_every, uint8_t out[k_input_bytes]) {
+  // tick ≥ 0; hashed as its u64 bits.
+  uint64_t state = seed ^ (uint64_t{player} * 0xD1B54A32D192ED03ull) ^ ((static_cast<uint64_t>(tick) / (change_every == 0 ? 1 : change_every)) * 0x9E3779B97F4A7C15ull);
   const uint64_t r = splitmix64_next(&state);
   out[0] = static_cast<uint8_t>(static_cast<int8_t>(static_cast<int64_t>(r & 31) - 15));
   out[1] = static_cast<uint8_t>(static_cast<int8_t>(static_cast<int64_t>((r >> 8) & 31) - 15));

@@ -24,7 +24,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
   if (!out->status.ok()) return;
   SessionCallbacks cb = game.callbacks([&](uint32_t to, std::span<const uint8_t> bytes) { transport.send(to, bytes); });
   if (o.inject_desync_tick != 0) {
-    cb.after_step = [&game, t0 = o.inject_desync_tick](uint64_t tick, WorldId world) {
+    cb.after_step = [&game, t0 = o.inject_desync_tick](int64_t tick, WorldId world) {
       game.after_step(tick, world);
       if (tick == t0) {
         const BodyId b = body_id(world, game.players[0]);
@@ -62,7 +62,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
         (void)session.idle_frame();
         idled = true;
       } else {
-        arena::bot_input(o.bot_seed, o.config.local_endpoint, session.current_tick() + 1 + o.config.input_delay,
+        arena::bot_input(o.bot_seed, o.config.local_endpoint, session.current_tick() + 1 + int64_t{o.config.input_delay},
                          o.change_every, input);
         (void)session.advance_frame(input);
         idled = false;
@@ -74,7 +74,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
       transport.close(0);  // no disconnect message: the others must notice the silence
       break;
     }
-    for (uint64_t t = out->hashes.size() + 1; t <= session.confirmed_tick(); ++t) out->hashes.push_back(session.confirmed_hash(t));
+    for (int64_t t = static_cast<int64_t>(out->hashes.size()) + 1; t <= session.confirmed_tick(); ++t) out->hashes.push_back(session.confirmed_hash(t));
     if (o.progress) o.progress(session.confirmed_tick(), o.ticks);
     if (!ending && session.state() != SessionState::running) ending = true;
     if (!ending && session.confirmed_tick() >= o.ticks && session.remote_confirmed_through() >= o.ticks) ending = true;
@@ -102,7 +102,7 @@ void run_peer(EnetTransport& transport, const PeerOptions& o, PeerResult* out) {
   out->stats = session.stats();
   out->transport = transport.stats();
   out->confirmed_tick = session.confirmed_tick();
-  out->final_hash = out->hashes.size() >= o.ticks && o.ticks != 0 ? out->hashes[o.ticks - 1] : 0;
+  out->final_hash = o.ticks > 0 && static_cast<int64_t>(out->hashes.size()) >= o.ticks ? out->hashes[static_cast<size_t>(o.ticks - 1)] : 0;
   out->seconds = std::chrono::duration<double>(Clock::now() - started).count();
 }
 

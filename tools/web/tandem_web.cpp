@@ -226,10 +226,10 @@ EMSCRIPTEN_KEEPALIVE int tw_step(int32_t count) {
 /// keyframe, then the recorded ticks). Returns 0, or 2 with tw_error().
 EMSCRIPTEN_KEEPALIVE int tw_seek(int32_t tick) {
   if (g_current.mode != Mode::replay) return fail("seek: only a replay can be scrubbed");
-  if (tick < 0 || static_cast<uint64_t>(tick) > g_current.replay.tick_count())
+  if (tick < 0 || tick > g_current.replay.tick_count())
     return fail(g_current.name + ": tick " + std::to_string(tick) + " is outside 0.." +
                 std::to_string(g_current.replay.tick_count()));
-  const Status s = g_current.replay.seek(g_current.world, static_cast<uint64_t>(tick));
+  const Status s = g_current.replay.seek(g_current.world, tick);
   if (!s.ok()) return fail(g_current.name + ": " + s.message);
   g_current.tick = tick;
   return 0;
@@ -247,8 +247,8 @@ EMSCRIPTEN_KEEPALIVE const char* tw_hash() {
 /// The replay's recorded hash after `tick` (1..count) as hex, or "" when none.
 EMSCRIPTEN_KEEPALIVE const char* tw_recorded_hash(int32_t tick) {
   g_text.clear();
-  if (g_current.mode == Mode::replay && tick >= 1 && static_cast<uint64_t>(tick) <= g_current.replay.tick_count()) {
-    const TickRecord& r = g_current.replay.tick_record(static_cast<uint64_t>(tick));
+  if (g_current.mode == Mode::replay && tick >= 1 && tick <= g_current.replay.tick_count()) {
+    const TickRecord& r = g_current.replay.tick_record(tick);
     if (r.has_hash) g_text = hash_text(r.hash);
   }
   return g_text.c_str();
@@ -355,12 +355,12 @@ EMSCRIPTEN_KEEPALIVE const char* tw_info() {
   const Vec2 gravity = world_gravity(w);
   char buf[1536];
   std::snprintf(buf, sizeof buf,
-                "\"step_hz\": %.6f, \"scene_ticks\": %" PRId64 ", \"replay_ticks\": %" PRIu64
+                "\"step_hz\": %.6f, \"scene_ticks\": %" PRId64 ", \"replay_ticks\": %" PRId64
                 ", \"bodies\": %d, \"dynamic_bodies\": %d, \"shapes\": %d, \"joints\": %d, \"gravity\": [%.9g, %.9g], "
                 "\"broad_phase\": \"%s\", \"view\": [%.9g, %.9g, %.9g, %.9g], \"mean_speed\": %.9g, \"max_speed\": %.9g, "
                 "\"circles\": %d, \"radius_min\": %.9g, \"radius_max\": %.9g, \"mean_restitution\": %.9g}",
                 1.0 / d(g_current.time_step), scene_mode ? g_current.scene.ticks : int64_t{0},
-                g_current.mode == Mode::replay ? g_current.replay.tick_count() : uint64_t{0}, counters.body_count, dynamic,
+                g_current.mode == Mode::replay ? g_current.replay.tick_count() : int64_t{0}, counters.body_count, dynamic,
                 counters.shape_count, counters.joint_count, d(gravity.x), d(gravity.y),
                 broad_phase_name(world_def(w).broad_phase), lx, ly, ux, uy,
                 dynamic > 0 ? speed_sum / dynamic : 0.0, speed_max, circles, radius_min, radius_max,
