@@ -1,17 +1,20 @@
 // state_fields.h — the canonical field list of every persistent physics
 // record (internal, not installed): one visit function per record lists its
 // fields in canonical order with their names, and every consumer of the
-// canonical state walks them — replay/'s encoder, decoder, size, hash, field
-// diff and restore validation (replay/state_internal.h) — so adding a field
-// to a record is one line here (plus a format version bump when the bytes
-// change; tests/replay/test_state_fields.cpp fails when a record's size
-// changes without this list being revisited).
+// canonical state walks them — replay/'s encoder, decoder, size, hash and
+// field diff (through physics/state_access.h: FieldsOf below adapts its
+// FieldVisitor), the restore checks (state_check.cpp) and the compact
+// rollback image's full records — so adding a field to a record is one line
+// here (plus a format version bump when the bytes change;
+// tests/replay/test_state_fields.cpp fails when a record's size changes
+// without this list being revisited). A bounded field (q32_in, vec2_in)
+// carries the range a restored value must lie in, next to the field.
 //
 // A visitor V provides: k_reading (true when fields are being filled from
-// bytes), record(kind, index, index2, generation), tag(4 chars),
-// q32(name, Q32&), vec2(name_x, name_y, Vec2&), i32, u32, count, u16, u64,
-// boolean (name, T&), enum8(name, E&, max), ranged_i32(name, int32_t&, lo,
-// hi) and ok() (false after a failed read: stop).
+// bytes), q32(name, Q32&), q32_in(name, Q32&, lo, hi, unit),
+// vec2(name_x, name_y, Vec2&), vec2_in(..., lo, hi, unit), i32, u32, u16,
+// u64, boolean (name, T&), enum8(name, E&, max), ranged_i32(name, int32_t&,
+// lo, hi) and ok() (false after a failed read: stop).
 #pragma once
 
 #include <algorithm>

@@ -24,7 +24,7 @@
 //   shapes  per live shape: i32 body, u8 type and flags with presence bits,
 //           then materials, filter, user data when not the defaults
 //   contacts u32 count; per contact i32 shape_a, i32 shape_b, u8 point count
-//           (bit 2: a full record follows, state_internal.h visit_contact);
+//           (bit 2: a full record follows, state_fields.h visit_contact);
 //           compact: per point u16 feature id, normal and tangent impulse
 //   pairs   u8 1 when the touching pairs are exactly the touching contacts
 //           (always after a step), else 0, u32 count and the pairs; then the

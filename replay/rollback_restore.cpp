@@ -21,7 +21,7 @@ using namespace rollback_detail;
 
 namespace {
 
-// Ranges restored (the portable restore's, state_validate.cpp).
+// Ranges restored (the portable restore's, physics/state_check.cpp).
 constexpr Q32 k_max_coordinate = k_max_world_coordinate * 2;
 constexpr Q32 k_max_speed = k_max_linear_speed * 4;
 constexpr Q32 k_max_spin = k_max_angular_speed * 64;  // small bodies spin fast; the rim speed is what matters

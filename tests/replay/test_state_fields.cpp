@@ -2,7 +2,7 @@
 // sizes of the records the state encodes (64-bit hosts with 8-byte aligned
 // int64, where the sizes below hold). When one fails, a field was added to
 // (or removed from) a physics record: add it to its visit_* function in
-// replay/state_internal.h (portable image, hash, decode, diff; bump the
+// physics/state_fields.h (portable image, hash, decode, diff; bump the
 // format version if the bytes change) and to the compact rollback image
 // (replay/rollback.cpp, rollback_restore.cpp) — or, for per-step scratch
 // that is not state, say so next to the field — then update the size here.
