@@ -72,19 +72,18 @@ namespace {
 /// Pool slots (generation, alive) after the capacity.
 template <typename F>
 void visit_pool(F& f, IdPool& pool, StateList list, const char* kind, int32_t max_capacity) {
-  FieldVisitor& v = f.v;
   uint32_t capacity = static_cast<uint32_t>(pool.generations.size());
-  v.count(list, kind, "capacity", capacity, static_cast<uint32_t>(max_capacity));
-  if (!v.ok()) return;
+  f.count(list, kind, "capacity", capacity, static_cast<uint32_t>(max_capacity));
+  if (!f.ok()) return;
   if constexpr (F::k_reading) {
     pool.generations.assign(capacity, 0);
     pool.alive.assign(capacity, 0);
   }
   for (uint32_t i = 0; i < capacity; ++i) {
     bool alive = pool.alive[i] != 0;
-    v.slot(kind, i, pool.generations[i], alive);
+    f.slot(kind, i, pool.generations[i], alive);
     if constexpr (F::k_reading) {
-      if (!v.ok()) return;
+      if (!f.ok()) return;
       pool.alive[i] = alive ? 1 : 0;
     }
   }
@@ -105,14 +104,13 @@ void visit_pool(F& f, IdPool& pool, StateList list, const char* kind, int32_t ma
 /// A sorted pair list after its count.
 template <typename F>
 void visit_pairs(F& f, std::vector<PairRecord>& pairs, StateList list, const char* kind) {
-  FieldVisitor& v = f.v;
   uint32_t n = static_cast<uint32_t>(pairs.size());
-  v.count(list, kind, "count", n, UINT32_MAX);
-  if (!v.ok()) return;
+  f.count(list, kind, "count", n, UINT32_MAX);
+  if (!f.ok()) return;
   if constexpr (F::k_reading) pairs.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
-    v.record(kind, pairs[i].shape_a, pairs[i].shape_b, 0);
-    if constexpr (F::k_reading) v.begin_read(kind, i);
+    f.record(kind, pairs[i].shape_a, pairs[i].shape_b, 0);
+    if constexpr (F::k_reading) f.begin_read(kind, i);
     state_fields::visit_pair(f, pairs[i]);
   }
 }
@@ -121,98 +119,138 @@ void visit_pairs(F& f, std::vector<PairRecord>& pairs, StateList list, const cha
 template <typename F>
 void visit_header(F& f, World& w) {
   state_fields::visit_world_def(f, w.def);
-  f.v.u64("step_count", w.step_count);
-  f.v.i32("last_solver_body_count", w.last_solver_body_count);
+  f.u64("step_count", w.step_count);
+  f.i32("last_solver_body_count", w.last_solver_body_count);
 }
 
 /// The live records of one pool's table, each after record() (and
 /// begin_read() when reading).
 template <typename F, typename Visit>
 void visit_live(F& f, const IdPool& pool, const char* kind, Visit visit) {
-  FieldVisitor& v = f.v;
   for (size_t i = 0; i < pool.generations.size(); ++i) {
     if (pool.alive[i] == 0) continue;
-    v.record(kind, static_cast<int64_t>(i), -1, pool.generations[i]);
-    if constexpr (F::k_reading) v.begin_read(kind, static_cast<int64_t>(i));
+    f.record(kind, static_cast<int64_t>(i), -1, pool.generations[i]);
+    if constexpr (F::k_reading) f.begin_read(kind, static_cast<int64_t>(i));
     visit(i);
-    if (!v.ok()) return;
+    if (!f.ok()) return;
   }
 }
 
 /// The whole state (state.h's format, after the header).
 template <typename F>
 void visit_all(F& f, World& w, StateSections sections) {
-  FieldVisitor& v = f.v;
-  v.tag("WRLD");
-  v.record("world", 0, -1, 0);
+  f.tag("WRLD");
+  f.record("world", 0, -1, 0);
   visit_header(f, w);
-  if (!v.ok()) return;
+  if (!f.ok()) return;
 
-  v.tag("BPOL");
+  f.tag("BPOL");
   visit_pool(f, w.body_pool, StateList::body_slots, "body_slot", k_max_bodies);
-  if (!v.ok()) return;
+  if (!f.ok()) return;
   if constexpr (F::k_reading) {
     w.bodies.assign(w.body_pool.generations.size(), Body{});
     w.body_sims.assign(w.body_pool.generations.size(), BodySim{});
   }
-  v.tag("BODY");
+  f.tag("BODY");
   visit_live(f, w.body_pool, "body", [&](size_t i) { state_fields::visit_body(f, w.bodies[i], w.body_sims[i]); });
-  if (!v.ok()) return;
+  if (!f.ok()) return;
 
-  v.tag("SPOL");
+  f.tag("SPOL");
   visit_pool(f, w.shape_pool, StateList::shape_slots, "shape_slot", k_max_shapes);
-  if (!v.ok()) return;
+  if (!f.ok()) return;
   if constexpr (F::k_reading) {
     w.shapes.assign(w.shape_pool.generations.size(), Shape{});
     w.shape_geometries.assign(w.shape_pool.generations.size(), ShapeGeometry{});
   }
-  v.tag("SHAP");
+  f.tag("SHAP");
   visit_live(f, w.shape_pool, "shape",
              [&](size_t i) { state_fields::visit_shape(f, w.shapes[i], w.shape_geometries[i]); });
-  if (!v.ok()) return;
+  if (!f.ok()) return;
 
-  v.tag("CONT");
+  f.tag("CONT");
   uint32_t contact_count = static_cast<uint32_t>(w.contacts.size());
-  v.count(StateList::contacts, "contacts", "count", contact_count, UINT32_MAX);
-  if (!v.ok()) return;
+  f.count(StateList::contacts, "contacts", "count", contact_count, UINT32_MAX);
+  if (!f.ok()) return;
   if constexpr (F::k_reading) w.contacts.assign(contact_count, Contact{});
   for (uint32_t i = 0; i < contact_count; ++i) {
     Contact& c = w.contacts[i];
-    v.record("contact", c.shape_a, c.shape_b, 0);
-    if constexpr (F::k_reading) v.begin_read("contact", i);
+    f.record("contact", c.shape_a, c.shape_b, 0);
+    if constexpr (F::k_reading) f.begin_read("contact", i);
     state_fields::visit_contact(f, c);
-    if (!v.ok()) return;
+    if (!f.ok()) return;
   }
 
-  v.tag("TUCH");
+  f.tag("TUCH");
   visit_pairs(f, w.events.touching, StateList::touching, "touching");
-  if (!v.ok()) return;
-  v.tag("SENS");
+  if (!f.ok()) return;
+  f.tag("SENS");
   visit_pairs(f, w.events.sensor_overlaps, StateList::sensor_overlaps, "sensor_overlap");
-  if (!sections.joints || !v.ok()) return;
+  if (!sections.joints || !f.ok()) return;
 
-  v.tag("JPOL");
+  f.tag("JPOL");
   visit_pool(f, w.joint_pool, StateList::joint_slots, "joint_slot", k_max_bodies);
-  if (!v.ok()) return;
+  if (!f.ok()) return;
   std::vector<Joint>& joints = w.joints.joints;
   if constexpr (F::k_reading) joints.assign(w.joint_pool.generations.size(), Joint{});
-  v.tag("JOIN");
+  f.tag("JOIN");
   visit_live(f, w.joint_pool, "joint", [&](size_t i) { state_fields::visit_joint(f, joints[i]); });
-  if (!sections.joint_events || !v.ok()) return;
+  if (!sections.joint_events || !f.ok()) return;
 
-  v.tag("JEVP");
+  f.tag("JEVP");
   std::vector<JointEvent>& pending = w.joints.pending;
   uint32_t pending_count = static_cast<uint32_t>(pending.size());
-  v.count(StateList::pending_joint_events, "pending joint events", "count", pending_count, UINT32_MAX);
-  if (!v.ok()) return;
+  f.count(StateList::pending_joint_events, "pending joint events", "count", pending_count, UINT32_MAX);
+  if (!f.ok()) return;
   if constexpr (F::k_reading) pending.assign(pending_count, JointEvent{});
   for (uint32_t i = 0; i < pending_count; ++i) {
-    v.record("joint_event", i, -1, 0);
-    if constexpr (F::k_reading) v.begin_read("joint_event", i);
+    f.record("joint_event", i, -1, 0);
+    if constexpr (F::k_reading) f.begin_read("joint_event", i);
     state_fields::visit_joint_event(f, pending[i]);
-    if (!v.ok()) return;
+    if (!f.ok()) return;
   }
 }
+
+/// Writes the canonical bytes itself (FieldVisitor::output_buffer): the
+/// same bytes as replay's WriteVisitor, without a virtual call per field.
+struct RawWriter {
+  static constexpr bool k_reading = false;
+  OutputBuffer& out;
+  void put64(uint64_t x, size_t n) {
+    if (out.size <= out.capacity && n <= out.capacity - out.size) {
+      uint8_t* p = out.data + out.size;
+      for (size_t i = 0; i < n; ++i) p[i] = static_cast<uint8_t>(x >> (8 * i));
+    }
+    out.size += n;
+  }
+  void q32(const char*, Q32& x) { put64(static_cast<uint64_t>(x.raw), 8); }
+  void q32_in(const char*, Q32& x, Q32, Q32, const char*) { q32(nullptr, x); }
+  void vec2(const char*, const char*, Vec2& x) {
+    q32(nullptr, x.x);
+    q32(nullptr, x.y);
+  }
+  void vec2_in(const char*, const char*, Vec2& x, Q32, Q32, const char*) { vec2(nullptr, nullptr, x); }
+  void i32(const char*, int32_t& x) { put64(static_cast<uint32_t>(x), 4); }
+  void u32(const char*, uint32_t& x) { put64(x, 4); }
+  void u16(const char*, uint16_t& x) { put64(x, 2); }
+  void u64(const char*, uint64_t& x) { put64(x, 8); }
+  void boolean(const char*, bool& x) { put64(x ? 1u : 0u, 1); }
+  template <typename E>
+  void enum8(const char*, E& e, int32_t) {
+    put64(static_cast<uint8_t>(static_cast<int32_t>(e)), 1);
+  }
+  void ranged_i32(const char*, int32_t& x, int32_t, int32_t) { i32(nullptr, x); }
+  bool ok() const { return true; }
+  void record(const char*, int64_t, int64_t, uint32_t) {}
+  void begin_read(const char*, int64_t) {}
+  void tag(const char* t) {
+    for (size_t i = 0; i < 4; ++i) put64(static_cast<uint8_t>(t[i]), 1);
+  }
+  void count(StateList, const char*, const char*, uint32_t& n, uint32_t) { u32(nullptr, n); }
+  void slot(const char*, uint32_t, uint32_t& generation, bool& alive) {
+    u32(nullptr, generation);
+    boolean(nullptr, alive);
+  }
+};
 
 /// Runs `visit` with the visitor's adapter (reading or not).
 template <typename Visit>
@@ -240,8 +278,13 @@ void with_broad_phase(World& w, bool as_naive, Visit visit) {
 void visit_world(WorldState& state, FieldVisitor& v, StateSections sections, bool broad_phase_as_naive) {
   World& w = as_world(state);
   with_broad_phase(w, broad_phase_as_naive, [&] {
-    FieldsOf<false> f{v};
-    visit_all(f, w, sections);
+    if (OutputBuffer* out = v.output_buffer()) {
+      RawWriter f{*out};
+      visit_all(f, w, sections);
+    } else {
+      FieldsOf<false> f{v};
+      visit_all(f, w, sections);
+    }
   });
 }
 

@@ -46,11 +46,28 @@ enum class StateList : uint8_t {
 /// The record kinds a field can be looked up in (offsets, messages).
 enum class RecordKind : uint8_t { world, body, shape, contact, joint };
 
+/// The output of a writing visitor that lets physics write the bytes itself
+/// (FieldVisitor::output_buffer): bytes go to data[size, capacity); a value
+/// that does not fit whole is counted in size but not written.
+struct OutputBuffer {
+  uint8_t* data = nullptr;
+  size_t capacity = 0;
+  size_t size = 0;
+};
+
 /// Walks the fields of the canonical state, in canonical order. Every field
 /// is passed by reference: a reading visitor fills it, the others read it.
 class FieldVisitor {
  public:
   virtual ~FieldVisitor() = default;
+  /// A writing visitor may return its output here; visit_world then writes
+  /// the canonical little-endian bytes of every field directly — exactly
+  /// what the visitor's own methods would write (8 bytes for Q32, u64 and
+  /// each Vec2 component, 4 for i32, u32 and counts, 2 for u16, 1 for bools,
+  /// enums and a slot's alive flag, after its u32 generation; the 4 tag
+  /// characters) — saving a virtual call per field on the hash path. The
+  /// encoding tests compare both paths byte for byte.
+  virtual OutputBuffer* output_buffer() { return nullptr; }
   /// True when fields are filled from bytes (decoding into a StateImage).
   virtual bool reading() const = 0;
   /// A record starts: its kind ("body"), index (slot index; for contacts and

@@ -65,6 +65,18 @@ struct FieldsOf {
   }
   void ranged_i32(const char* n, int32_t& x, int32_t lo, int32_t hi) { v.ranged_i32(n, x, lo, hi); }
   bool ok() const { return v.ok(); }
+  // The structure between records.
+  void record(const char* kind, int64_t index, int64_t index2, uint32_t generation) {
+    v.record(kind, index, index2, generation);
+  }
+  void begin_read(const char* kind, int64_t position) { v.begin_read(kind, position); }
+  void tag(const char* t) { v.tag(t); }
+  void count(state_access::StateList list, const char* context, const char* name, uint32_t& n, uint32_t max) {
+    v.count(list, context, name, n, max);
+  }
+  void slot(const char* kind, uint32_t index, uint32_t& generation, bool& alive) {
+    v.slot(kind, index, generation, alive);
+  }
 };
 
 /// The first bounded field of a record outside its range.

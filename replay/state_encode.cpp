@@ -80,13 +80,15 @@ void write_header(ByteWriter* out, uint32_t version) {
 }
 
 size_t encode_into(WorldState& world, const StateCensus& census, uint8_t* buffer, size_t capacity,
-                   bool broad_phase_as_naive) {
+                   bool broad_phase_as_naive, bool per_field) {
   ByteWriter out(buffer, capacity);
   const uint32_t version = image_version(census);
   write_header(&out, version);
   WriteVisitor v{&out};
+  OutputBuffer raw{buffer, capacity, out.size()};
+  if (!per_field) v.raw = &raw;
   visit_world(world, v, sections_of(version), broad_phase_as_naive);
-  return out.size();
+  return per_field ? out.size() : raw.size;
 }
 
 std::vector<uint8_t>& scratch_bytes() {

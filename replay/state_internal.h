@@ -66,7 +66,11 @@ size_t min_record_bytes(StateList list);
 /// Fields → bytes.
 struct WriteVisitor final : FieldVisitor {
   ByteWriter* w;
+  /// When set, physics writes a whole world's bytes here itself (the same
+  /// bytes, without a call per field; encode_into).
+  OutputBuffer* raw = nullptr;
   explicit WriteVisitor(ByteWriter* writer) : w(writer) {}
+  OutputBuffer* output_buffer() override { return raw; }
   bool reading() const override { return false; }
   void record(const char*, int64_t, int64_t, uint32_t) override {}
   void tag(const char* t) override { w->bytes(reinterpret_cast<const uint8_t*>(t), 4); }
@@ -250,9 +254,10 @@ inline StateSections sections_of(uint32_t version) {
 const RecordSizes& record_sizes();
 size_t encoded_size(const StateCensus& census);
 /// Encodes into buffer[0, capacity); returns the size (> capacity: nothing
-/// past the capacity was written).
+/// past the capacity was written). per_field: through WriteVisitor's own
+/// methods instead of physics' direct writer (the same bytes; tests compare).
 size_t encode_into(WorldState& world, const StateCensus& census, uint8_t* buffer, size_t capacity,
-                   bool broad_phase_as_naive);
+                   bool broad_phase_as_naive, bool per_field = false);
 std::vector<uint8_t>& scratch_bytes();
 
 // state_restore.cpp
