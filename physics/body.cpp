@@ -52,20 +52,13 @@ Vec2 clamp_speed(Vec2 v, Q32 max_speed) {
 /// Shared path of the simple setters: resolve (mutating), then run `set`.
 template <typename Set>
 Status set_body(BodyId id, const char* function, Set set) {
-  World* w = nullptr;
-  int32_t i = 0;
-  Status s = resolve_body(id, function, true, WorldId{}, &w, &i);
-  if (!s.ok()) return s;
-  return set(w, i);
+  return set_resolved(id, function, resolve_body, set);
 }
 
 /// Shared path of the getters: `fallback` for an invalid handle.
 template <typename T, typename Get>
 T get_body(BodyId id, T fallback, Get get) {
-  World* w = nullptr;
-  int32_t i = 0;
-  if (!find_body(id, &w, &i)) return fallback;
-  return get(*w, i);
+  return get_found(id, fallback, find_body, get);
 }
 
 /// The body's mass for its (possibly new) type and flags, without changing it.

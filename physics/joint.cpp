@@ -168,6 +168,50 @@ Result<JointId> add_joint(World* w, int32_t a, int32_t b, const JointBaseDef& ba
   return r;
 }
 
+/// What every create_*_joint starts with: the function and def names its
+/// messages use, the result (whose status the checks write), and the world
+/// and body indices that check_base resolved.
+struct JointCreation {
+  const char* fn;
+  const char* dn;
+  Result<JointId> r;
+  World* w = nullptr;
+  int32_t a = 0, b = 0;
+
+  template <typename Def>
+  JointCreation(WorldId world, const Def& def, const char* function, const char* def_name)
+      : fn(function), dn(def_name) {
+    r.status = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
+  }
+  Result<JointId> add(const JointBaseDef& base, JointType type, const Joint& j) {
+    return add_joint(w, a, b, base, type, j);
+  }
+};
+
+/// A motor's speed (within ±max_speed) and its largest force or torque.
+bool check_motor(const char* function, const char* def_name, Q32 speed, Q32 max_speed, const char* speed_unit,
+                 const char* max_name, Q32 max_value, Q32 max_limit, const char* max_unit, Status* s) {
+  return check_range(function, def_name, "motor_speed", speed, -max_speed, max_speed, speed_unit, s) &&
+         check_range(function, def_name, max_name, max_value, Q32::zero(), max_limit, max_unit, s);
+}
+
+// The setting groups several joint kinds share (their def members differ).
+void set_limit(Joint* j, bool enable, Q32 lower, Q32 upper) {
+  j->enable_limit = enable;
+  j->lower = lower;
+  j->upper = upper;
+}
+void set_motor(Joint* j, bool enable, Q32 speed, Q32 max_force_or_torque) {
+  j->enable_motor = enable;
+  j->motor_speed = speed;
+  j->max_motor_force = max_force_or_torque;
+}
+void set_spring(Joint* j, bool enable, Q32 hertz, Q32 damping_ratio) {
+  j->enable_spring = enable;
+  j->hertz = hertz;
+  j->damping_ratio = damping_ratio;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -235,82 +279,55 @@ MotorJointDef default_motor_joint_def() {
 // ---------------------------------------------------------------------------
 
 Result<JointId> create_revolute_joint(WorldId world, const RevoluteJointDef& def) {
-  const char* fn = "create_revolute_joint";
-  const char* dn = "RevoluteJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
-      !check_angle(fn, dn, "lower_angle", def.lower_angle, &s) ||
-      !check_angle(fn, dn, "upper_angle", def.upper_angle, &s) ||
-      !check_order(fn, dn, "lower_angle", def.lower_angle, "upper_angle", def.upper_angle, &s) ||
-      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_angular_speed, k_max_angular_speed, "rad/s", &s) ||
-      !check_range(fn, dn, "max_motor_torque", def.max_motor_torque, Q32::zero(), k_max_joint_torque, "N·m", &s) ||
-      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s)) {
-    return r;
+  JointCreation c(world, def, "create_revolute_joint", "RevoluteJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_angle(fn, dn, "reference_angle", def.reference_angle, s) ||
+      !check_angle(fn, dn, "lower_angle", def.lower_angle, s) ||
+      !check_angle(fn, dn, "upper_angle", def.upper_angle, s) ||
+      !check_order(fn, dn, "lower_angle", def.lower_angle, "upper_angle", def.upper_angle, s) ||
+      !check_motor(fn, dn, def.motor_speed, k_max_angular_speed, "rad/s", "max_motor_torque", def.max_motor_torque,
+                   k_max_joint_torque, "N·m", s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, s)) {
+    return c.r;
   }
   Joint j;
   j.reference_angle = def.reference_angle;
-  j.enable_limit = def.enable_limit;
-  j.lower = def.lower_angle;
-  j.upper = def.upper_angle;
-  j.enable_motor = def.enable_motor;
-  j.motor_speed = def.motor_speed;
-  j.max_motor_force = def.max_motor_torque;
-  j.enable_spring = def.enable_spring;
-  j.hertz = def.hertz;
-  j.damping_ratio = def.damping_ratio;
-  return add_joint(w, a, b, def.base, JointType::revolute, j);
+  set_limit(&j, def.enable_limit, def.lower_angle, def.upper_angle);
+  set_motor(&j, def.enable_motor, def.motor_speed, def.max_motor_torque);
+  set_spring(&j, def.enable_spring, def.hertz, def.damping_ratio);
+  return c.add(def.base, JointType::revolute, j);
 }
 
 Result<JointId> create_distance_joint(WorldId world, const DistanceJointDef& def) {
-  const char* fn = "create_distance_joint";
-  const char* dn = "DistanceJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_range(fn, dn, "length", def.length, k_min_joint_length, k_max_joint_length, "m", &s) ||
-      !check_range(fn, dn, "max_length", def.max_length, k_min_joint_length, k_max_joint_length, "m", &s) ||
-      !check_range(fn, dn, "min_length", def.min_length, Q32::zero(), def.max_length, "m", &s) ||
-      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s) ||
-      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_linear_speed, k_max_linear_speed, "m/s", &s) ||
-      !check_range(fn, dn, "max_motor_force", def.max_motor_force, Q32::zero(), k_max_joint_force, "N", &s)) {
-    return r;
+  JointCreation c(world, def, "create_distance_joint", "DistanceJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_range(fn, dn, "length", def.length, k_min_joint_length, k_max_joint_length, "m", s) ||
+      !check_range(fn, dn, "max_length", def.max_length, k_min_joint_length, k_max_joint_length, "m", s) ||
+      !check_range(fn, dn, "min_length", def.min_length, Q32::zero(), def.max_length, "m", s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, s) ||
+      !check_motor(fn, dn, def.motor_speed, k_max_linear_speed, "m/s", "max_motor_force", def.max_motor_force,
+                   k_max_joint_force, "N", s)) {
+    return c.r;
   }
   Joint j;
   j.length = def.length;
-  j.enable_spring = def.enable_spring;
-  j.hertz = def.hertz;
-  j.damping_ratio = def.damping_ratio;
-  j.enable_limit = def.enable_limit;
-  j.lower = def.min_length;
-  j.upper = def.max_length;
-  j.enable_motor = def.enable_motor;
-  j.motor_speed = def.motor_speed;
-  j.max_motor_force = def.max_motor_force;
-  return add_joint(w, a, b, def.base, JointType::distance, j);
+  set_spring(&j, def.enable_spring, def.hertz, def.damping_ratio);
+  set_limit(&j, def.enable_limit, def.min_length, def.max_length);
+  set_motor(&j, def.enable_motor, def.motor_speed, def.max_motor_force);
+  return c.add(def.base, JointType::distance, j);
 }
 
 Result<JointId> create_weld_joint(WorldId world, const WeldJointDef& def) {
-  const char* fn = "create_weld_joint";
-  const char* dn = "WeldJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
-      !check_spring(fn, dn, "linear_hertz", def.linear_hertz, "linear_damping_ratio", def.linear_damping_ratio, &s) ||
+  JointCreation c(world, def, "create_weld_joint", "WeldJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_angle(fn, dn, "reference_angle", def.reference_angle, s) ||
+      !check_spring(fn, dn, "linear_hertz", def.linear_hertz, "linear_damping_ratio", def.linear_damping_ratio, s) ||
       !check_spring(fn, dn, "angular_hertz", def.angular_hertz, "angular_damping_ratio", def.angular_damping_ratio,
-                    &s)) {
-    return r;
+                    s)) {
+    return c.r;
   }
   Joint j;
   j.reference_angle = def.reference_angle;
@@ -318,112 +335,81 @@ Result<JointId> create_weld_joint(WorldId world, const WeldJointDef& def) {
   j.damping_ratio = def.linear_damping_ratio;
   j.angular_hertz = def.angular_hertz;
   j.angular_damping_ratio = def.angular_damping_ratio;
-  return add_joint(w, a, b, def.base, JointType::weld, j);
+  return c.add(def.base, JointType::weld, j);
 }
 
 Result<JointId> create_prismatic_joint(WorldId world, const PrismaticJointDef& def) {
-  const char* fn = "create_prismatic_joint";
-  const char* dn = "PrismaticJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_axis(fn, dn, def.local_axis_a, &s) || !check_angle(fn, dn, "reference_angle", def.reference_angle, &s) ||
-      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, &s) ||
-      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_linear_speed, k_max_linear_speed, "m/s", &s) ||
-      !check_range(fn, dn, "max_motor_force", def.max_motor_force, Q32::zero(), k_max_joint_force, "N", &s) ||
-      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s)) {
-    return r;
+  JointCreation c(world, def, "create_prismatic_joint", "PrismaticJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_axis(fn, dn, def.local_axis_a, s) || !check_angle(fn, dn, "reference_angle", def.reference_angle, s) ||
+      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, s) ||
+      !check_motor(fn, dn, def.motor_speed, k_max_linear_speed, "m/s", "max_motor_force", def.max_motor_force,
+                   k_max_joint_force, "N", s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, s)) {
+    return c.r;
   }
   Joint j;
   j.local_axis_a = normalize(def.local_axis_a);
   j.reference_angle = def.reference_angle;
-  j.enable_limit = def.enable_limit;
-  j.lower = def.lower_translation;
-  j.upper = def.upper_translation;
-  j.enable_motor = def.enable_motor;
-  j.motor_speed = def.motor_speed;
-  j.max_motor_force = def.max_motor_force;
-  j.enable_spring = def.enable_spring;
-  j.hertz = def.hertz;
-  j.damping_ratio = def.damping_ratio;
-  return add_joint(w, a, b, def.base, JointType::prismatic, j);
+  set_limit(&j, def.enable_limit, def.lower_translation, def.upper_translation);
+  set_motor(&j, def.enable_motor, def.motor_speed, def.max_motor_force);
+  set_spring(&j, def.enable_spring, def.hertz, def.damping_ratio);
+  return c.add(def.base, JointType::prismatic, j);
 }
 
 Result<JointId> create_mouse_joint(WorldId world, const MouseJointDef& def) {
-  const char* fn = "create_mouse_joint";
-  const char* dn = "MouseJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!aabb_contains_point(w->def.bounds, def.target)) {
-    s = make_status(StatusCode::invalid_argument, std::string(fn) + ": " + dn + ".target " + format_vec2(def.target) +
+  JointCreation c(world, def, "create_mouse_joint", "MouseJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok()) return c.r;
+  if (!aabb_contains_point(c.w->def.bounds, def.target)) {
+    *s = make_status(StatusCode::invalid_argument, std::string(fn) + ": " + dn + ".target " + format_vec2(def.target) +
                                                       " m is outside the world bounds");
-    return r;
+    return c.r;
   }
-  if (!check_range(fn, dn, "hertz", def.hertz, Q32::epsilon(), k_max_joint_hertz, "Hz", &s) ||
-      !check_range(fn, dn, "damping_ratio", def.damping_ratio, Q32::zero(), k_max_joint_damping_ratio, "", &s) ||
-      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", &s)) {
-    return r;
+  if (!check_range(fn, dn, "hertz", def.hertz, Q32::epsilon(), k_max_joint_hertz, "Hz", s) ||
+      !check_range(fn, dn, "damping_ratio", def.damping_ratio, Q32::zero(), k_max_joint_damping_ratio, "", s) ||
+      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", s)) {
+    return c.r;
   }
   Joint j;
   j.target = def.target;
   j.hertz = def.hertz;
   j.damping_ratio = def.damping_ratio;
   j.max_force = def.max_force;
-  return add_joint(w, a, b, def.base, JointType::mouse, j);
+  return c.add(def.base, JointType::mouse, j);
 }
 
 Result<JointId> create_wheel_joint(WorldId world, const WheelJointDef& def) {
-  const char* fn = "create_wheel_joint";
-  const char* dn = "WheelJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_axis(fn, dn, def.local_axis_a, &s) ||
-      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, &s) ||
-      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, &s) ||
-      !check_range(fn, dn, "motor_speed", def.motor_speed, -k_max_angular_speed, k_max_angular_speed, "rad/s", &s) ||
-      !check_range(fn, dn, "max_motor_torque", def.max_motor_torque, Q32::zero(), k_max_joint_torque, "N·m", &s)) {
-    return r;
+  JointCreation c(world, def, "create_wheel_joint", "WheelJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_axis(fn, dn, def.local_axis_a, s) ||
+      !check_spring(fn, dn, "hertz", def.hertz, "damping_ratio", def.damping_ratio, s) ||
+      !check_translation_limits(fn, dn, def.lower_translation, def.upper_translation, s) ||
+      !check_motor(fn, dn, def.motor_speed, k_max_angular_speed, "rad/s", "max_motor_torque", def.max_motor_torque,
+                   k_max_joint_torque, "N·m", s)) {
+    return c.r;
   }
   Joint j;
   j.local_axis_a = normalize(def.local_axis_a);
-  j.enable_spring = def.enable_spring;
-  j.hertz = def.hertz;
-  j.damping_ratio = def.damping_ratio;
-  j.enable_limit = def.enable_limit;
-  j.lower = def.lower_translation;
-  j.upper = def.upper_translation;
-  j.enable_motor = def.enable_motor;
-  j.motor_speed = def.motor_speed;
-  j.max_motor_force = def.max_motor_torque;
-  return add_joint(w, a, b, def.base, JointType::wheel, j);
+  set_spring(&j, def.enable_spring, def.hertz, def.damping_ratio);
+  set_limit(&j, def.enable_limit, def.lower_translation, def.upper_translation);
+  set_motor(&j, def.enable_motor, def.motor_speed, def.max_motor_torque);
+  return c.add(def.base, JointType::wheel, j);
 }
 
 Result<JointId> create_motor_joint(WorldId world, const MotorJointDef& def) {
-  const char* fn = "create_motor_joint";
-  const char* dn = "MotorJointDef";
-  Result<JointId> r;
-  World* w = nullptr;
-  int32_t a = 0, b = 0;
-  Status& s = r.status;
-  s = check_base(world, def.base, def.internal_cookie, fn, dn, &w, &a, &b);
-  if (!s.ok()) return r;
-  if (!check_vec(fn, dn, "linear_offset", def.linear_offset, k_max_shape_size, "m", &s) ||
-      !check_angle(fn, dn, "angular_offset", def.angular_offset, &s) ||
-      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", &s) ||
-      !check_range(fn, dn, "max_torque", def.max_torque, Q32::zero(), k_max_joint_torque, "N·m", &s) ||
-      !check_range(fn, dn, "correction_factor", def.correction_factor, Q32::zero(), Q32::one(), "", &s)) {
-    return r;
+  JointCreation c(world, def, "create_motor_joint", "MotorJointDef");
+  const char *fn = c.fn, *dn = c.dn;
+  Status* s = &c.r.status;
+  if (!s->ok() || !check_vec(fn, dn, "linear_offset", def.linear_offset, k_max_shape_size, "m", s) ||
+      !check_angle(fn, dn, "angular_offset", def.angular_offset, s) ||
+      !check_range(fn, dn, "max_force", def.max_force, Q32::zero(), k_max_joint_force, "N", s) ||
+      !check_range(fn, dn, "max_torque", def.max_torque, Q32::zero(), k_max_joint_torque, "N·m", s) ||
+      !check_range(fn, dn, "correction_factor", def.correction_factor, Q32::zero(), Q32::one(), "", s)) {
+    return c.r;
   }
   Joint j;
   j.target = def.linear_offset;
@@ -434,7 +420,7 @@ Result<JointId> create_motor_joint(WorldId world, const MotorJointDef& def) {
   JointBaseDef base = def.base;
   base.local_anchor_a = {};
   base.local_anchor_b = {};
-  return add_joint(w, a, b, base, JointType::motor, j);
+  return c.add(base, JointType::motor, j);
 }
 
 // ---------------------------------------------------------------------------

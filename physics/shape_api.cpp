@@ -251,19 +251,12 @@ Result<ShapeId> create_shape(BodyId body_id, const ShapeDef& def, const ShapeGeo
 
 template <typename Set>
 Status set_shape(ShapeId id, const char* fn, Set set) {
-  World* w = nullptr;
-  int32_t i = 0;
-  Status s = resolve_shape(id, fn, true, WorldId{}, &w, &i);
-  if (!s.ok()) return s;
-  return set(w, i);
+  return set_resolved(id, fn, resolve_shape, set);
 }
 
 template <typename T, typename Get>
 T get_shape(ShapeId id, T fallback, Get get) {
-  World* w = nullptr;
-  int32_t i = 0;
-  if (!find_shape(id, &w, &i)) return fallback;
-  return get(*w, i);
+  return get_found(id, fallback, find_shape, get);
 }
 
 }  // namespace

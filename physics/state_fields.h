@@ -1,17 +1,20 @@
 // state_fields.h — the canonical field list of every persistent physics
 // record (internal, not installed): one visit function per record lists its
 // fields in canonical order with their names, and every consumer of the
-// canonical state walks them — replay/'s encoder, decoder, size, hash, field
-// diff and restore validation (replay/state_internal.h) — so adding a field
-// to a record is one line here (plus a format version bump when the bytes
-// change; tests/replay/test_state_fields.cpp fails when a record's size
-// changes without this list being revisited).
+// canonical state walks them — replay/'s encoder, decoder, size, hash and
+// field diff (through physics/state_access.h: FieldsOf below adapts its
+// FieldVisitor), the restore checks (state_check.cpp) and the compact
+// rollback image's full records — so adding a field to a record is one line
+// here (plus a format version bump when the bytes change;
+// tests/replay/test_state_fields.cpp fails when a record's size changes
+// without this list being revisited). A bounded field (q32_in, vec2_in)
+// carries the range a restored value must lie in, next to the field.
 //
 // A visitor V provides: k_reading (true when fields are being filled from
-// bytes), record(kind, index, index2, generation), tag(4 chars),
-// q32(name, Q32&), vec2(name_x, name_y, Vec2&), i32, u32, count, u16, u64,
-// boolean (name, T&), enum8(name, E&, max), ranged_i32(name, int32_t&, lo,
-// hi) and ok() (false after a failed read: stop).
+// bytes), q32(name, Q32&), q32_in(name, Q32&, lo, hi, unit),
+// vec2(name_x, name_y, Vec2&), vec2_in(..., lo, hi, unit), i32, u32, u16,
+// u64, boolean (name, T&), enum8(name, E&, max), ranged_i32(name, int32_t&,
+// lo, hi) and ok() (false after a failed read: stop).
 #pragma once
 
 #include <algorithm>
@@ -19,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "fixed/fixed_math.h"
 #include "physics/body.h"
 #include "physics/contact.h"
 #include "physics/event_state.h"
@@ -26,8 +30,87 @@
 #include "physics/joint_state.h"
 #include "physics/limits.h"
 #include "physics/shape.h"
+#include "physics/state_access.h"
 
 namespace tandem::state_fields {
+
+/// Largest |accumulated joint impulse| restored, N·s (as contact impulses).
+inline constexpr Q32 k_max_restored_joint_impulse = Q32::from_raw(int64_t{400000000} << 32);
+
+// ---------------------------------------------------------------------------
+// Visitors
+// ---------------------------------------------------------------------------
+
+/// Runs the field lists below with a state_access::FieldVisitor (the
+/// interface replay implements): enums pass as their int32 values, and the
+/// ranges of bounded fields are for the checks, not the bytes.
+template <bool Reading>
+struct FieldsOf {
+  static constexpr bool k_reading = Reading;
+  state_access::FieldVisitor& v;
+  void q32(const char* n, Q32& x) { v.q32(n, x); }
+  void q32_in(const char* n, Q32& x, Q32, Q32, const char*) { v.q32(n, x); }
+  void vec2(const char* nx, const char* ny, Vec2& x) { v.vec2(nx, ny, x); }
+  void vec2_in(const char* nx, const char* ny, Vec2& x, Q32, Q32, const char*) { v.vec2(nx, ny, x); }
+  void i32(const char* n, int32_t& x) { v.i32(n, x); }
+  void u32(const char* n, uint32_t& x) { v.u32(n, x); }
+  void u16(const char* n, uint16_t& x) { v.u16(n, x); }
+  void u64(const char* n, uint64_t& x) { v.u64(n, x); }
+  void boolean(const char* n, bool& x) { v.boolean(n, x); }
+  template <typename E>
+  void enum8(const char* n, E& e, int32_t max) {
+    int32_t x = static_cast<int32_t>(e);
+    v.enum8(n, x, max);
+    if constexpr (Reading) e = static_cast<E>(x);
+  }
+  void ranged_i32(const char* n, int32_t& x, int32_t lo, int32_t hi) { v.ranged_i32(n, x, lo, hi); }
+  bool ok() const { return v.ok(); }
+  // The structure between records.
+  void record(const char* kind, int64_t index, int64_t index2, uint32_t generation) {
+    v.record(kind, index, index2, generation);
+  }
+  void begin_read(const char* kind, int64_t position) { v.begin_read(kind, position); }
+  void tag(const char* t) { v.tag(t); }
+  void count(state_access::StateList list, const char* context, const char* name, uint32_t& n, uint32_t max) {
+    v.count(list, context, name, n, max);
+  }
+  void slot(const char* kind, uint32_t index, uint32_t& generation, bool& alive) {
+    v.slot(kind, index, generation, alive);
+  }
+};
+
+/// The first bounded field of a record outside its range.
+struct FieldRangeFailure {
+  const char* field = nullptr;
+  Q32 value, lo, hi;
+  const char* unit = "";
+};
+
+/// Finds the first bounded field outside its range (q32_in, vec2_in); the
+/// other fields are not looked at.
+struct RangeCheck {
+  static constexpr bool k_reading = false;
+  FieldRangeFailure* failure;
+  void q32_in(const char* n, Q32& x, Q32 lo, Q32 hi, const char* unit) {
+    if (failure->field != nullptr || (lo <= x && x <= hi)) return;
+    *failure = FieldRangeFailure{n, x, lo, hi, unit};
+  }
+  void vec2_in(const char* nx, const char* ny, Vec2& x, Q32 lo, Q32 hi, const char* unit) {
+    q32_in(nx, x.x, lo, hi, unit);
+    q32_in(ny, x.y, lo, hi, unit);
+  }
+  void q32(const char*, Q32&) {}
+  void vec2(const char*, const char*, Vec2&) {}
+  void i32(const char*, int32_t&) {}
+  void u32(const char*, uint32_t&) {}
+  void u16(const char*, uint16_t&) {}
+  void u64(const char*, uint64_t&) {}
+  void boolean(const char*, bool&) {}
+  template <typename E>
+  void enum8(const char*, E&, int32_t) {}
+  void ranged_i32(const char*, int32_t&, int32_t, int32_t) {}
+  bool ok() const { return true; }
+};
 
 // ---------------------------------------------------------------------------
 // Field names that carry an index (built once)
@@ -214,41 +297,51 @@ void visit_contact(V& v, Contact& c) {
 /// reaction; the per-step scratch is not state.
 template <typename V>
 void visit_joint(V& v, Joint& j) {
+  // The bounded fields carry the range a restored value must lie in: what the
+  // joint API accepts for the field (limits.h), over every joint kind (a
+  // field keeps its default 0 in the kinds that do not use it); accumulated
+  // impulses as contact impulses.
+  const Q32 z = Q32::zero();
+  const Q32 size = k_max_shape_size;
+  const Q32 jmax = k_max_restored_joint_impulse;
+  const Q32 speed = max(k_max_linear_speed, k_max_angular_speed);
+  const Q32 motor = max(k_max_joint_force, k_max_joint_torque);
+  const Q32 coord = k_max_world_coordinate;
   v.enum8("type", j.type, static_cast<int32_t>(JointType::motor));
   v.i32("body_a", j.body_a);
   v.i32("body_b", j.body_b);
-  v.vec2("local_anchor_a.x", "local_anchor_a.y", j.local_anchor_a);
-  v.vec2("local_anchor_b.x", "local_anchor_b.y", j.local_anchor_b);
+  v.vec2_in("local_anchor_a.x", "local_anchor_a.y", j.local_anchor_a, -size, size, "m");
+  v.vec2_in("local_anchor_b.x", "local_anchor_b.y", j.local_anchor_b, -size, size, "m");
   v.vec2("local_axis_a.x", "local_axis_a.y", j.local_axis_a);
-  v.q32("reference_angle", j.reference_angle);
+  v.q32_in("reference_angle", j.reference_angle, -k_pi, k_pi, "rad");
   v.boolean("collide_connected", j.collide_connected);
   v.boolean("enable_spring", j.enable_spring);
   v.boolean("enable_limit", j.enable_limit);
   v.boolean("enable_motor", j.enable_motor);
-  v.q32("break_force", j.break_force);
-  v.q32("break_torque", j.break_torque);
+  v.q32_in("break_force", j.break_force, z, k_max_joint_force, "N");
+  v.q32_in("break_torque", j.break_torque, z, k_max_joint_torque, "N·m");
   v.u64("user_data", j.user_data);
-  v.q32("hertz", j.hertz);
-  v.q32("damping_ratio", j.damping_ratio);
-  v.q32("angular_hertz", j.angular_hertz);
-  v.q32("angular_damping_ratio", j.angular_damping_ratio);
-  v.q32("length", j.length);
-  v.q32("lower", j.lower);
-  v.q32("upper", j.upper);
-  v.q32("motor_speed", j.motor_speed);
-  v.q32("max_motor_force", j.max_motor_force);
-  v.vec2("target.x", "target.y", j.target);
-  v.q32("angular_offset", j.angular_offset);
-  v.q32("max_force", j.max_force);
-  v.q32("max_torque", j.max_torque);
-  v.q32("correction_factor", j.correction_factor);
-  v.vec2("linear_impulse.x", "linear_impulse.y", j.linear_impulse);
-  v.q32("angular_impulse", j.angular_impulse);
-  v.q32("axial_impulse", j.axial_impulse);
-  v.q32("spring_impulse", j.spring_impulse);
-  v.q32("motor_impulse", j.motor_impulse);
-  v.q32("lower_impulse", j.lower_impulse);
-  v.q32("upper_impulse", j.upper_impulse);
+  v.q32_in("hertz", j.hertz, z, k_max_joint_hertz, "Hz");
+  v.q32_in("damping_ratio", j.damping_ratio, z, k_max_joint_damping_ratio, "");
+  v.q32_in("angular_hertz", j.angular_hertz, z, k_max_joint_hertz, "Hz");
+  v.q32_in("angular_damping_ratio", j.angular_damping_ratio, z, k_max_joint_damping_ratio, "");
+  v.q32_in("length", j.length, z, k_max_joint_length, "m");
+  v.q32_in("lower", j.lower, -k_max_joint_length, k_max_joint_length, "rad or m");
+  v.q32_in("upper", j.upper, -k_max_joint_length, k_max_joint_length, "rad or m");
+  v.q32_in("motor_speed", j.motor_speed, -speed, speed, "rad/s or m/s");
+  v.q32_in("max_motor_force", j.max_motor_force, z, motor, "N or N·m");
+  v.vec2_in("target.x", "target.y", j.target, -coord, coord, "m");
+  v.q32_in("angular_offset", j.angular_offset, -k_pi, k_pi, "rad");
+  v.q32_in("max_force", j.max_force, z, k_max_joint_force, "N");
+  v.q32_in("max_torque", j.max_torque, z, k_max_joint_torque, "N·m");
+  v.q32_in("correction_factor", j.correction_factor, z, Q32::one(), "");
+  v.vec2_in("linear_impulse.x", "linear_impulse.y", j.linear_impulse, -jmax, jmax, "N·s");
+  v.q32_in("angular_impulse", j.angular_impulse, -jmax, jmax, "N·m·s");
+  v.q32_in("axial_impulse", j.axial_impulse, -jmax, jmax, "N·s");
+  v.q32_in("spring_impulse", j.spring_impulse, -jmax, jmax, "N·s");
+  v.q32_in("motor_impulse", j.motor_impulse, -jmax, jmax, "N·s");
+  v.q32_in("lower_impulse", j.lower_impulse, -jmax, jmax, "N·s");
+  v.q32_in("upper_impulse", j.upper_impulse, -jmax, jmax, "N·s");
   v.vec2("reaction_force.x", "reaction_force.y", j.reaction_force);
   v.q32("reaction_torque", j.reaction_torque);
 }
@@ -278,5 +371,14 @@ void visit_pair(V& v, PairRecord& p) {
   v.u32("generation_b", p.generation_b);
 }
 
+
+/// The first field of a joint outside its range (false: none).
+inline bool first_joint_field_out_of_range(const Joint& joint, FieldRangeFailure* out) {
+  *out = FieldRangeFailure{};
+  Joint j = joint;
+  RangeCheck check{out};
+  visit_joint(check, j);
+  return out->field != nullptr;
+}
 
 }  // namespace tandem::state_fields

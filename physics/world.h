@@ -143,6 +143,29 @@ Status resolve_handle(const char* function, const char* kind, uint32_t index1, u
                       WorldId expected_world, bool mutating, IdPool World::*pool, World** out_world,
                       int32_t* out_index);
 
+/// The shared path of the simple setters of a body or shape handle: resolve
+/// it for `function` with `resolve` (resolve_body or resolve_shape, mutating,
+/// any world), then run set(World*, index).
+template <typename Id, typename Resolve, typename Set>
+Status set_resolved(Id id, const char* function, Resolve resolve, Set set) {
+  World* w = nullptr;
+  int32_t i = 0;
+  Status s = resolve(id, function, true, WorldId{}, &w, &i);
+  if (!s.ok()) return s;
+  return set(w, i);
+}
+
+/// The shared path of the getters of a body or shape handle: look it up with
+/// `find` (find_body or find_shape), get(const World&, index), or `fallback`
+/// for an invalid handle.
+template <typename T, typename Id, typename Find, typename Get>
+T get_found(Id id, T fallback, Find find, Get get) {
+  World* w = nullptr;
+  int32_t i = 0;
+  if (!find(id, &w, &i)) return fallback;
+  return get(*w, i);
+}
+
 /// The quiet version of resolve_handle for getters: true and the world and
 /// index when the handle names a live object.
 bool find_handle(uint32_t index1, uint32_t generation, WorldId world_id, IdPool World::*pool, World** out_world,

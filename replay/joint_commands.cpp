@@ -118,206 +118,153 @@ JointBaseDef base_of(WorldId world, const JointSpec& s) {
   return b;
 }
 
+// The settings groups several joint kinds share, copied from the spec into a
+// kind's def (the members that differ by kind are named by the caller).
+template <typename D>
+void copy_spring(const JointSpec& s, D* d) {
+  d->enable_spring = s.enable_spring;
+  d->hertz = s.hertz;
+  d->damping_ratio = s.damping_ratio;
+}
+template <typename D>
+void copy_limit(const JointSpec& s, D* d, Q32 D::*lower, Q32 D::*upper) {
+  d->enable_limit = s.enable_limit;
+  d->*lower = s.lower;
+  d->*upper = s.upper;
+}
+template <typename D>
+void copy_motor(const JointSpec& s, D* d, Q32 D::*max_motor) {
+  d->enable_motor = s.enable_motor;
+  d->motor_speed = s.motor_speed;
+  d->*max_motor = s.motor_force;
+}
+
+// Each kind's own settings, from the spec (the shared groups above).
+void fill(const JointSpec& s, RevoluteJointDef* d) {
+  d->reference_angle = s.reference_angle;
+  copy_limit(s, d, &RevoluteJointDef::lower_angle, &RevoluteJointDef::upper_angle);
+  copy_motor(s, d, &RevoluteJointDef::max_motor_torque);
+  copy_spring(s, d);
+}
+void fill(const JointSpec& s, DistanceJointDef* d) {
+  d->length = s.length;
+  copy_spring(s, d);
+  copy_limit(s, d, &DistanceJointDef::min_length, &DistanceJointDef::max_length);
+  copy_motor(s, d, &DistanceJointDef::max_motor_force);
+}
+void fill(const JointSpec& s, WeldJointDef* d) {
+  d->reference_angle = s.reference_angle;
+  d->linear_hertz = s.hertz;
+  d->linear_damping_ratio = s.damping_ratio;
+  d->angular_hertz = s.angular_hertz;
+  d->angular_damping_ratio = s.angular_damping_ratio;
+}
+void fill(const JointSpec& s, PrismaticJointDef* d) {
+  d->local_axis_a = s.local_axis;
+  d->reference_angle = s.reference_angle;
+  copy_limit(s, d, &PrismaticJointDef::lower_translation, &PrismaticJointDef::upper_translation);
+  copy_motor(s, d, &PrismaticJointDef::max_motor_force);
+  copy_spring(s, d);
+}
+void fill(const JointSpec& s, MouseJointDef* d) {
+  d->target = s.target;
+  d->hertz = s.hertz;
+  d->damping_ratio = s.damping_ratio;
+  d->max_force = s.max_force;
+}
+void fill(const JointSpec& s, WheelJointDef* d) {
+  d->local_axis_a = s.local_axis;
+  copy_spring(s, d);
+  copy_limit(s, d, &WheelJointDef::lower_translation, &WheelJointDef::upper_translation);
+  copy_motor(s, d, &WheelJointDef::max_motor_torque);
+}
+void fill(const JointSpec& s, MotorJointDef* d) {
+  d->linear_offset = s.target;
+  d->angular_offset = s.angular_offset;
+  d->max_force = s.max_force;
+  d->max_torque = s.max_torque;
+  d->correction_factor = s.correction_factor;
+}
+
+/// Creates a joint of one kind: its default def, the spec's base and settings.
+template <typename D>
+Status create_as(WorldId world, const JointSpec& s, D d, Result<JointId> (*create)(WorldId, const D&)) {
+  d.base = base_of(world, s);
+  fill(s, &d);
+  return create(world, d).status;
+}
+
 Status create_from_spec(WorldId world, const JointSpec& s) {
   switch (s.type) {
-    case JointType::revolute: {
-      RevoluteJointDef d = default_revolute_joint_def();
-      d.base = base_of(world, s);
-      d.reference_angle = s.reference_angle;
-      d.enable_limit = s.enable_limit;
-      d.lower_angle = s.lower;
-      d.upper_angle = s.upper;
-      d.enable_motor = s.enable_motor;
-      d.motor_speed = s.motor_speed;
-      d.max_motor_torque = s.motor_force;
-      d.enable_spring = s.enable_spring;
-      d.hertz = s.hertz;
-      d.damping_ratio = s.damping_ratio;
-      return create_revolute_joint(world, d).status;
-    }
-    case JointType::distance: {
-      DistanceJointDef d = default_distance_joint_def();
-      d.base = base_of(world, s);
-      d.length = s.length;
-      d.enable_spring = s.enable_spring;
-      d.hertz = s.hertz;
-      d.damping_ratio = s.damping_ratio;
-      d.enable_limit = s.enable_limit;
-      d.min_length = s.lower;
-      d.max_length = s.upper;
-      d.enable_motor = s.enable_motor;
-      d.motor_speed = s.motor_speed;
-      d.max_motor_force = s.motor_force;
-      return create_distance_joint(world, d).status;
-    }
-    case JointType::weld: {
-      WeldJointDef d = default_weld_joint_def();
-      d.base = base_of(world, s);
-      d.reference_angle = s.reference_angle;
-      d.linear_hertz = s.hertz;
-      d.linear_damping_ratio = s.damping_ratio;
-      d.angular_hertz = s.angular_hertz;
-      d.angular_damping_ratio = s.angular_damping_ratio;
-      return create_weld_joint(world, d).status;
-    }
-    case JointType::prismatic: {
-      PrismaticJointDef d = default_prismatic_joint_def();
-      d.base = base_of(world, s);
-      d.local_axis_a = s.local_axis;
-      d.reference_angle = s.reference_angle;
-      d.enable_limit = s.enable_limit;
-      d.lower_translation = s.lower;
-      d.upper_translation = s.upper;
-      d.enable_motor = s.enable_motor;
-      d.motor_speed = s.motor_speed;
-      d.max_motor_force = s.motor_force;
-      d.enable_spring = s.enable_spring;
-      d.hertz = s.hertz;
-      d.damping_ratio = s.damping_ratio;
-      return create_prismatic_joint(world, d).status;
-    }
-    case JointType::mouse: {
-      MouseJointDef d = default_mouse_joint_def();
-      d.base = base_of(world, s);
-      d.target = s.target;
-      d.hertz = s.hertz;
-      d.damping_ratio = s.damping_ratio;
-      d.max_force = s.max_force;
-      return create_mouse_joint(world, d).status;
-    }
-    case JointType::wheel: {
-      WheelJointDef d = default_wheel_joint_def();
-      d.base = base_of(world, s);
-      d.local_axis_a = s.local_axis;
-      d.enable_spring = s.enable_spring;
-      d.hertz = s.hertz;
-      d.damping_ratio = s.damping_ratio;
-      d.enable_limit = s.enable_limit;
-      d.lower_translation = s.lower;
-      d.upper_translation = s.upper;
-      d.enable_motor = s.enable_motor;
-      d.motor_speed = s.motor_speed;
-      d.max_motor_torque = s.motor_force;
-      return create_wheel_joint(world, d).status;
-    }
-    case JointType::motor: {
-      MotorJointDef d = default_motor_joint_def();
-      d.base = base_of(world, s);
-      d.linear_offset = s.target;
-      d.angular_offset = s.angular_offset;
-      d.max_force = s.max_force;
-      d.max_torque = s.max_torque;
-      d.correction_factor = s.correction_factor;
-      return create_motor_joint(world, d).status;
-    }
+    case JointType::revolute: return create_as(world, s, default_revolute_joint_def(), create_revolute_joint);
+    case JointType::distance: return create_as(world, s, default_distance_joint_def(), create_distance_joint);
+    case JointType::weld: return create_as(world, s, default_weld_joint_def(), create_weld_joint);
+    case JointType::prismatic: return create_as(world, s, default_prismatic_joint_def(), create_prismatic_joint);
+    case JointType::mouse: return create_as(world, s, default_mouse_joint_def(), create_mouse_joint);
+    case JointType::wheel: return create_as(world, s, default_wheel_joint_def(), create_wheel_joint);
+    case JointType::motor: return create_as(world, s, default_motor_joint_def(), create_motor_joint);
   }
   return Status{StatusCode::invalid_argument, "create_joint: unknown joint type"};
 }
 
 }  // namespace
 
+// The builders name the fields each type uses (Command is an aggregate).
+// Designated initializers leave the other members at their defaults on
+// purpose (g++ would warn about each of them).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 Command make_create_joint(const JointSpec& spec) {
-  Command c;
-  c.type = CommandType::create_joint;
-  c.joint_spec = spec;
-  return c;
+  return Command{.type = CommandType::create_joint, .joint_spec = spec};
 }
 
-Command make_destroy_joint(JointRef joint) {
-  Command c;
-  c.type = CommandType::destroy_joint;
-  c.joint = joint;
-  return c;
-}
+Command make_destroy_joint(JointRef joint) { return Command{.type = CommandType::destroy_joint, .joint = joint}; }
 
 Command make_set_joint_motor_speed(JointRef joint, Q32 speed) {
-  Command c;
-  c.type = CommandType::set_joint_motor_speed;
-  c.joint = joint;
-  c.scalar = speed;
-  return c;
+  return Command{.type = CommandType::set_joint_motor_speed, .scalar = speed, .joint = joint};
 }
 
 Command make_set_joint_target(JointRef joint, Vec2 target) {
-  Command c;
-  c.type = CommandType::set_joint_target;
-  c.joint = joint;
-  c.vector = target;
-  return c;
+  return Command{.type = CommandType::set_joint_target, .vector = target, .joint = joint};
 }
 
 Command make_set_joint_length(JointRef joint, Q32 length) {
-  Command c;
-  c.type = CommandType::set_joint_length;
-  c.joint = joint;
-  c.scalar = length;
-  return c;
+  return Command{.type = CommandType::set_joint_length, .scalar = length, .joint = joint};
 }
 
 Command make_set_joint_limits(JointRef joint, Q32 lower, Q32 upper) {
-  Command c;
-  c.type = CommandType::set_joint_limits;
-  c.joint = joint;
-  c.scalar = lower;
-  c.scalar2 = upper;
-  return c;
+  return Command{.type = CommandType::set_joint_limits, .scalar = lower, .joint = joint, .scalar2 = upper};
 }
-
-namespace {
-
-Command joint_command(CommandType type, JointRef joint) {
-  Command c;
-  c.type = type;
-  c.joint = joint;
-  return c;
-}
-
-}  // namespace
 
 Command make_enable_joint_motor(JointRef joint, bool enable) {
-  Command c = joint_command(CommandType::enable_joint_motor, joint);
-  c.flag = enable;
-  return c;
+  return Command{.type = CommandType::enable_joint_motor, .flag = enable, .joint = joint};
 }
 
 Command make_set_joint_max_motor_force(JointRef joint, Q32 force_or_torque) {
-  Command c = joint_command(CommandType::set_joint_max_motor_force, joint);
-  c.scalar = force_or_torque;
-  return c;
+  return Command{.type = CommandType::set_joint_max_motor_force, .scalar = force_or_torque, .joint = joint};
 }
 
 Command make_enable_joint_limit(JointRef joint, bool enable) {
-  Command c = joint_command(CommandType::enable_joint_limit, joint);
-  c.flag = enable;
-  return c;
+  return Command{.type = CommandType::enable_joint_limit, .flag = enable, .joint = joint};
 }
 
 Command make_enable_joint_spring(JointRef joint, bool enable) {
-  Command c = joint_command(CommandType::enable_joint_spring, joint);
-  c.flag = enable;
-  return c;
+  return Command{.type = CommandType::enable_joint_spring, .flag = enable, .joint = joint};
 }
 
 Command make_set_joint_spring(JointRef joint, Q32 hertz, Q32 damping_ratio) {
-  Command c = joint_command(CommandType::set_joint_spring, joint);
-  c.scalar = hertz;
-  c.scalar2 = damping_ratio;
-  return c;
+  return Command{.type = CommandType::set_joint_spring, .scalar = hertz, .joint = joint, .scalar2 = damping_ratio};
 }
 
 Command make_set_joint_offsets(JointRef joint, Vec2 linear_offset, Q32 angular_offset) {
-  Command c = joint_command(CommandType::set_joint_offsets, joint);
-  c.vector = linear_offset;
-  c.scalar = angular_offset;
-  return c;
+  return Command{
+      .type = CommandType::set_joint_offsets, .vector = linear_offset, .scalar = angular_offset, .joint = joint};
 }
 
 Command make_set_joint_break_thresholds(JointRef joint, Q32 force, Q32 torque) {
-  Command c = joint_command(CommandType::set_joint_break_thresholds, joint);
-  c.scalar = force;
-  c.scalar2 = torque;
-  return c;
+  return Command{.type = CommandType::set_joint_break_thresholds, .scalar = force, .joint = joint, .scalar2 = torque};
 }
+#pragma GCC diagnostic pop
 
 Status apply_joint_command(WorldId world, const Command& c) {
   if (c.type == CommandType::create_joint) return create_from_spec(world, c.joint_spec);

@@ -24,7 +24,7 @@
 //   shapes  per live shape: i32 body, u8 type and flags with presence bits,
 //           then materials, filter, user data when not the defaults
 //   contacts u32 count; per contact i32 shape_a, i32 shape_b, u8 point count
-//           (bit 2: a full record follows, state_internal.h visit_contact);
+//           (bit 2: a full record follows, state_fields.h visit_contact);
 //           compact: per point u16 feature id, normal and tangent impulse
 //   pairs   u8 1 when the touching pairs are exactly the touching contacts
 //           (always after a step), else 0, u32 count and the pairs; then the
@@ -123,7 +123,8 @@ void write_pool(Out& o, const IdPool& pool) {
 template <typename F>
 void write_visited(Out& o, size_t bound, F&& f) {
   ByteWriter bw(o.p, bound);
-  WriteVisitor v{&bw};
+  WriteVisitor wv{&bw};
+  FieldsOf<false> v{wv};
   f(v);
   o.p += bw.size();
 }
@@ -143,7 +144,7 @@ void write_image(World& w, RollbackBuffer* buf) {
     def.broad_phase = BroadPhaseKind::naive;  // hashed as naive (byte 8 holds the kind)
     uint64_t steps = w.step_count;
     int32_t solver_bodies = w.last_solver_body_count;
-    write_visited(o, rs.world, [&](WriteVisitor& v) {
+    write_visited(o, rs.world, [&](auto& v) {
       visit_world_def(v, def);
       v.u64("", steps);
       v.i32("", solver_bodies);
@@ -243,7 +244,7 @@ void write_image(World& w, RollbackBuffer* buf) {
       }
     } else {
       o.u8(static_cast<uint8_t>(n | k_contact_full));
-      write_visited(o, full_bound, [&](WriteVisitor& v) { visit_contact(v, c); });
+      write_visited(o, full_bound, [&](auto& v) { visit_contact(v, c); });
     }
   }
 
@@ -264,11 +265,11 @@ void write_image(World& w, RollbackBuffer* buf) {
   write_pool(o, w.joint_pool);
   for (size_t i = 0; i < w.joint_pool.generations.size(); ++i) {
     if (w.joint_pool.alive[i] == 0) continue;
-    write_visited(o, rs.joint, [&](WriteVisitor& v) { visit_joint(v, w.joints.joints[i]); });
+    write_visited(o, rs.joint, [&](auto& v) { visit_joint(v, w.joints.joints[i]); });
   }
   o.u32(static_cast<uint32_t>(w.joints.pending.size()));
   for (JointEvent& e : w.joints.pending) {
-    write_visited(o, 64, [&](WriteVisitor& v) { visit_joint_event(v, e); });
+    write_visited(o, 64, [&](auto& v) { visit_joint_event(v, e); });
   }
   const size_t size = static_cast<size_t>(o.p - buf->image.data());
   TANDEM_ASSERT(size <= buf->image.size());

@@ -3,13 +3,32 @@
 // bit assignments and the geometry copy. rollback.cpp describes the layout.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
+#include "physics/body.h"
+#include "physics/broad_phase.h"
+#include "physics/contact.h"
+#include "physics/event_state.h"
+#include "physics/id_pool.h"
+#include "physics/joint_state.h"
+#include "physics/shape.h"
+#include "physics/state_fields.h"
+#include "physics/state_image.h"
+#include "physics/world.h"
 #include "replay/rollback.h"
 #include "replay/state_internal.h"
 
 namespace tandem::rollback_detail {
+
+using state_fields::FieldRangeFailure;
+using state_fields::FieldsOf;
+using state_fields::first_joint_field_out_of_range;
+using state_fields::visit_contact;
+using state_fields::visit_joint;
+using state_fields::visit_joint_event;
+using state_fields::visit_world_def;
 
 // Explicit little-endian loads and stores of one value: a copy of the value's
 // bytes, swapped on a big-endian host, so each compiles to one move on

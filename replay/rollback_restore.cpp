@@ -21,7 +21,7 @@ using namespace rollback_detail;
 
 namespace {
 
-// Ranges restored (the portable restore's, state_validate.cpp).
+// Ranges restored (the portable restore's, physics/state_check.cpp).
 constexpr Q32 k_max_coordinate = k_max_world_coordinate * 2;
 constexpr Q32 k_max_speed = k_max_linear_speed * 4;
 constexpr Q32 k_max_spin = k_max_angular_speed * 64;  // small bodies spin fast; the rim speed is what matters
@@ -191,7 +191,8 @@ class Decoder {
     ByteReader br(data_, size_);
     br.bytes(pos_, "");
     br.set_context(kind_, index_);
-    ReadVisitor v{&br};
+    ReadVisitor rv{&br, nullptr};
+    FieldsOf<true> v{rv};
     f(v);
     if (!br.ok()) {
       if (ok()) error_ = br.error();
@@ -206,7 +207,7 @@ class Decoder {
     WorldDef def{};
     uint64_t steps = 0;
     int32_t solver_bodies = 0;
-    visited([&](ReadVisitor& v) {
+    visited([&](auto& v) {
       visit_world_def(v, def);
       v.u64("step_count", steps);
       v.i32("last_solver_body_count", solver_bodies);
@@ -554,7 +555,7 @@ void Decoder<Apply>::contacts() {
     if ((head & k_contact_full) != 0) {
       Contact c{};
       const size_t rec_at = pos_;
-      visited([&](ReadVisitor& v) { visit_contact(v, c); });
+      visited([&](auto& v) { visit_contact(v, c); });
       if (!ok()) return;
       if (!Apply) {
         if (c.shape_a != a || c.shape_b != b || c.manifold.point_count != count || c.body_a < 0 ||
@@ -685,7 +686,7 @@ void Decoder<Apply>::joints() {
     context("joint", static_cast<int64_t>(i));
     const size_t at = pos_;
     Joint j{};
-    visited([&](ReadVisitor& v) { visit_joint(v, j); });
+    visited([&](auto& v) { visit_joint(v, j); });
     if (!ok()) return;
     if (!Apply) {
       const auto live = [&](int32_t b) { return b >= 0 && b < body_cap && sc_.body_alive[static_cast<size_t>(b)] != 0; };
@@ -694,12 +695,15 @@ void Decoder<Apply>::joints() {
                      "), which are not two live bodies");
         return;
       }
-      const JointFieldRange* bad = first_joint_field_out_of_range(j);
-      if (bad != nullptr) {
+      FieldRangeFailure bad;
+      if (first_joint_field_out_of_range(j, &bad)) {
         // The field's offset inside the record, found by walking the visitor.
         Joint copy = j;
-        const size_t field_at = at + field_offset_in(bad->field, [&](OffsetVisitor& ov) { visit_joint(ov, copy); });
-        refuse_range(field_at, bad->field, bad->get(j), bad->lo, bad->hi, bad->unit);
+        const size_t field_at = at + field_offset_in(bad.field, [&](OffsetVisitor& ov) {
+                                  FieldsOf<false> f{ov};
+                                  visit_joint(f, copy);
+                                });
+        refuse_range(field_at, bad.field, bad.value, bad.lo, bad.hi, bad.unit);
         return;
       }
       if (j.lower > j.upper) {
@@ -721,7 +725,7 @@ void Decoder<Apply>::joints() {
   for (uint32_t i = 0; i < n; ++i) {
     context("pending joint event", i);
     JointEvent e{};
-    visited([&](ReadVisitor& v) { visit_joint_event(v, e); });
+    visited([&](auto& v) { visit_joint_event(v, e); });
     if (!ok()) return;
     if (Apply) {
       e.joint.world = w_->id;
@@ -735,18 +739,7 @@ void Decoder<Apply>::joints() {
 /// What every restore does after replacing the records (as commit_image).
 template <bool Apply>
 void Decoder<Apply>::finish() {
-  World* w = w_;
-  w->contact_scratch.clear();
-  w->joints.events.clear();
-  rebuild_joint_filter(w);
-  EventState& e = w->events;
-  e.touching_next.clear();
-  e.sensor_next.clear();
-  e.hit_candidates.clear();
-  events_clear_reported(&e);
-  broad_phase_reset(w);
-  reserve_contact_headroom(w);
-  events_reserve_headroom(w);
+  state_access::rebuild_after_restore(w_);
 }
 
 }  // namespace

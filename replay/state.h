@@ -41,8 +41,9 @@
 // section starts with a 4-byte ASCII tag ("WRLD", "BPOL", "BODY", "SPOL",
 // "SHAP", "CONT", "TUCH", "SENS") so a corrupt image fails near the damage.
 // Nothing depends on struct layout, padding, host endianness or addresses.
-// Field order is defined once (state_internal.h: one visitor per record drives
-// encoding, size, decoding and the named-field decoding used by diffs), so
+// Field order is defined once, by physics (physics/state_fields.h, reached
+// through physics/state_access.h): one field list per record drives
+// encoding, size, decoding and the named-field decoding used by diffs, so
 // the four can never disagree.
 //
 // RESTORE decodes the whole image into scratch, validates it and only then

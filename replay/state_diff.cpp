@@ -91,7 +91,7 @@ void encode_state_delta(const uint8_t* base, size_t base_size, const uint8_t* im
 Status apply_state_delta(const uint8_t* base, size_t base_size, const uint8_t* delta, size_t delta_size,
                          std::vector<uint8_t>* out_image) {
   const auto bad = [](const std::string& msg) {
-    return make_status(StatusCode::invalid_argument, "apply_state_delta: " + msg);
+    return Status{StatusCode::invalid_argument, "apply_state_delta: " + msg};
   };
   if (delta == nullptr && delta_size != 0) return bad("null delta with size " + std::to_string(delta_size));
   ByteReader r(delta, delta_size);

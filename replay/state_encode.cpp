@@ -20,87 +20,55 @@ size_t measure(F&& f) {
   return counter.size();
 }
 
+size_t measure_default(DefaultRecord record, int32_t variant) {
+  return measure([&](WriteVisitor& v) { visit_default_record(record, variant, v); });
+}
+
 const RecordSizes& record_sizes() {
   static const RecordSizes sizes = [] {
     RecordSizes s;
-    s.world = measure([](WriteVisitor& v) {
-      WorldDef d{};
-      uint64_t sc = 0;
-      int32_t n = 0;
-      visit_world_def(v, d);
-      v.u64("", sc);
-      v.i32("", n);
-    });
-    s.body = measure([](WriteVisitor& v) {
-      Body b{};
-      BodySim sim{};
-      visit_body(v, b, sim);
-    });
-    for (int32_t t = 0; t < 5; ++t) {
-      s.shape[t] = measure([t](WriteVisitor& v) {
-        Shape sh{};
-        ShapeGeometry g{};
-        sh.type = static_cast<ShapeType>(t);
-        g.polygon.count = 0;
-        visit_shape(v, sh, g);
-      });
-    }
-    s.contact = measure([](WriteVisitor& v) {
-      Contact c{};
-      visit_contact(v, c);
-    });
-    s.contact_point = measure([](WriteVisitor& v) {
-                        Contact c{};
-                        c.manifold.point_count = 1;
-                        visit_contact(v, c);
-                      }) -
-                      s.contact;
-    s.joint = measure([](WriteVisitor& v) {
-      Joint j{};
-      visit_joint(v, j);
-    });
-    s.joint_event = measure([](WriteVisitor& v) {
-      JointEvent e{};
-      visit_joint_event(v, e);
-    });
+    s.world = measure_default(DefaultRecord::world, 0);
+    s.body = measure_default(DefaultRecord::body, 0);
+    for (int32_t t = 0; t < 5; ++t) s.shape[t] = measure_default(DefaultRecord::shape, t);
+    s.contact = measure_default(DefaultRecord::contact, 0);
+    s.contact_point = measure_default(DefaultRecord::contact, 1) - s.contact;
+    s.joint = measure_default(DefaultRecord::joint, 0);
+    s.joint_event = measure_default(DefaultRecord::joint_event, 0);
     return s;
   }();
   return sizes;
 }
 
-size_t min_contact_record_bytes() { return record_sizes().contact; }
-
-size_t shape_record_size(const Shape& s, const ShapeGeometry& g) {
-  const RecordSizes& rs = record_sizes();
-  const size_t t = static_cast<size_t>(s.type);
-  size_t n = t < 5 ? rs.shape[t] : 0;
-  if (s.type == ShapeType::polygon) n += static_cast<size_t>(std::clamp(g.polygon.count, 0, 8)) * rs.polygon_vertex;
-  return n;
+size_t min_record_bytes(StateList list) {
+  switch (list) {
+    case StateList::body_slots:
+    case StateList::shape_slots:
+    case StateList::joint_slots: return k_slot_bytes;
+    case StateList::contacts: return record_sizes().contact;
+    case StateList::touching:
+    case StateList::sensor_overlaps: return k_pair_bytes;
+    case StateList::pending_joint_events: return k_min_joint_event_bytes;
+  }
+  return 1;
 }
 
-size_t encoded_size(const World& w) {
+size_t encoded_size(const StateCensus& c) {
   const RecordSizes& rs = record_sizes();
   size_t n = k_header_bytes + 4 + rs.world;
-  n += 4 + 4 + w.body_pool.generations.size() * k_slot_bytes;
-  n += 4 + static_cast<size_t>(w.body_pool.alive_count) * rs.body;
-  n += 4 + 4 + w.shape_pool.generations.size() * k_slot_bytes;
+  n += 4 + 4 + c.body_slots * k_slot_bytes;
+  n += 4 + c.bodies * rs.body;
+  n += 4 + 4 + c.shape_slots * k_slot_bytes;
   n += 4;
-  for (size_t i = 0; i < w.shapes.size() && i < w.shape_pool.alive.size(); ++i) {
-    if (w.shape_pool.alive[i] != 0) n += shape_record_size(w.shapes[i], w.shape_geometries[i]);
-  }
-  n += 4 + 4;
-  for (const Contact& c : w.contacts) {
-    n += rs.contact + static_cast<size_t>(std::clamp(c.manifold.point_count, 0, 2)) * rs.contact_point;
-  }
-  n += 4 + 4 + w.events.touching.size() * k_pair_bytes;
-  n += 4 + 4 + w.events.sensor_overlaps.size() * k_pair_bytes;
-  const uint32_t version = image_version(w);
-  if (version >= k_state_format_version_joint_events) {
-    n += 4 + 4 + w.joints.pending.size() * rs.joint_event;
-  }
+  for (size_t t = 0; t < 5; ++t) n += c.shapes_by_type[t] * rs.shape[t];
+  n += c.polygon_vertices * rs.polygon_vertex;
+  n += 4 + 4 + c.contacts * rs.contact + c.contact_points * rs.contact_point;
+  n += 4 + 4 + c.touching * k_pair_bytes;
+  n += 4 + 4 + c.sensor_overlaps * k_pair_bytes;
+  const uint32_t version = image_version(c);
+  if (version >= k_state_format_version_joint_events) n += 4 + 4 + c.pending_joint_events * rs.joint_event;
   if (version >= k_state_format_version_joints) {
-    n += 4 + 4 + w.joint_pool.generations.size() * k_slot_bytes;
-    n += 4 + static_cast<size_t>(w.joint_pool.alive_count) * rs.joint;
+    n += 4 + 4 + c.joint_slots * k_slot_bytes;
+    n += 4 + c.joints * rs.joint;
   }
   return n;
 }
@@ -111,22 +79,30 @@ void write_header(ByteWriter* out, uint32_t version) {
   out->u32(k_state_kind_full);
 }
 
-size_t encode_into(World* w, uint8_t* buffer, size_t capacity) {
+size_t encode_into(WorldState& world, const StateCensus& census, uint8_t* buffer, size_t capacity,
+                   bool broad_phase_as_naive, bool per_field) {
   ByteWriter out(buffer, capacity);
-  const uint32_t version = image_version(*w);
+  const uint32_t version = image_version(census);
   write_header(&out, version);
   WriteVisitor v{&out};
-  visit_world(v, *w, nullptr, version);
-  return out.size();
-}
-
-Status resolve_for_state(WorldId id, const char* function, bool mutating, World** out) {
-  return resolve_world(id, function, mutating, out);
+  OutputBuffer raw{buffer, capacity, out.size()};
+  if (!per_field) v.raw = &raw;
+  visit_world(world, v, sections_of(version), broad_phase_as_naive);
+  return per_field ? out.size() : raw.size;
 }
 
 std::vector<uint8_t>& scratch_bytes() {
   thread_local std::vector<uint8_t> bytes;
   return bytes;
+}
+
+void DescribeVisitor::record(const char* kind, int64_t index, int64_t index2, uint32_t generation) {
+  DecodedRecord rec;
+  rec.kind = kind;
+  rec.index = index;
+  rec.index2 = index2;
+  rec.generation = generation;
+  out->records.push_back(std::move(rec));
 }
 
 }  // namespace state_detail
@@ -138,101 +114,90 @@ using namespace state_detail;
 // ---------------------------------------------------------------------------
 
 size_t world_snapshot_size(WorldId world) {
-  World* w = find_world(world);
-  return w == nullptr ? 0 : encoded_size(*w);
+  WorldState* w = find_world_state(world, false);
+  return w == nullptr ? 0 : encoded_size(census(*w));
 }
 
 Status world_snapshot(WorldId world, uint8_t* buffer, size_t capacity, size_t* written) {
-  World* w = nullptr;
-  Status s = resolve_for_state(world, "world_snapshot", true, &w);
+  WorldState* w = nullptr;
+  Status s = resolve_world_state(world, "world_snapshot", true, &w);
   if (!s.ok()) return s;
-  const size_t needed = encoded_size(*w);
+  const StateCensus c = census(*w);
+  const size_t needed = encoded_size(c);
   if (written != nullptr) *written = needed;
   if (capacity < needed || (buffer == nullptr && needed != 0)) {
-    return make_status(StatusCode::capacity_exceeded, "world_snapshot: the buffer holds " + std::to_string(capacity) +
+    return Status{StatusCode::capacity_exceeded, "world_snapshot: the buffer holds " + std::to_string(capacity) +
                                                           " bytes; the snapshot of " + describe(world) + " needs " +
-                                                          std::to_string(needed));
+                                                          std::to_string(needed)};
   }
-  const size_t n = encode_into(w, buffer, capacity);
+  const size_t n = encode_into(*w, c, buffer, capacity, false);
   TANDEM_ASSERT(n == needed);
   (void)n;
   return s;
 }
 
 Status world_snapshot_append(WorldId world, std::vector<uint8_t>* out) {
-  World* w = nullptr;
-  Status s = resolve_for_state(world, "world_snapshot_append", true, &w);
+  WorldState* w = nullptr;
+  Status s = resolve_world_state(world, "world_snapshot_append", true, &w);
   if (!s.ok()) return s;
-  const size_t needed = encoded_size(*w);
+  const StateCensus c = census(*w);
+  const size_t needed = encoded_size(c);
   const size_t old = out->size();
   out->resize(old + needed);
-  const size_t n = encode_into(w, out->data() + old, needed);
+  const size_t n = encode_into(*w, c, out->data() + old, needed, false);
   TANDEM_ASSERT(n == needed);
   (void)n;
   return s;
 }
 
 Status encode_world_state(WorldId world, std::vector<uint8_t>* out) {
-  World* w = nullptr;
-  Status s = resolve_for_state(world, "encode_world_state", true, &w);
+  WorldState* w = nullptr;
+  Status s = resolve_world_state(world, "encode_world_state", true, &w);
   if (!s.ok()) return s;
   out->clear();
   return world_snapshot_append(world, out);
 }
 
 uint64_t world_state_hash(WorldId world) {
-  World* w = find_world(world);
-  if (w == nullptr || w->locked) return 0;
+  WorldState* w = find_world_state(world, true);
+  if (w == nullptr) return 0;
   std::vector<uint8_t>& buf = scratch_bytes();
-  const size_t needed = encoded_size(*w);
+  const StateCensus c = census(*w);
+  const size_t needed = encoded_size(c);
   if (buf.size() < needed) buf.resize(needed);
   // The broad-phase kind is kept in snapshots (a restore brings it back) but
   // by contract changes no result, so the hash sees every world as naive:
   // the same simulation hashes the same whichever broad phase ran it.
-  const BroadPhaseKind kind = w->def.broad_phase;
-  w->def.broad_phase = BroadPhaseKind::naive;
-  const size_t n = encode_into(w, buf.data(), buf.size());
-  w->def.broad_phase = kind;
+  const size_t n = encode_into(*w, c, buf.data(), buf.size(), true);
   TANDEM_ASSERT(n == needed);
   return XXH3_64bits(buf.data(), n);
 }
 
 namespace {
-uint64_t hash_body(World* w, int32_t index) {
+uint64_t hash_body(WorldState& w, int32_t index) {
   std::vector<uint8_t>& buf = scratch_bytes();
-  const RecordSizes& rs = record_sizes();
-  const Body& body = w->bodies[static_cast<size_t>(index)];
-  size_t needed = rs.body;
-  for (int32_t s = body.head_shape; s != k_null_index; s = w->shapes[static_cast<size_t>(s)].next_shape) {
-    needed += shape_record_size(w->shapes[static_cast<size_t>(s)], w->shape_geometries[static_cast<size_t>(s)]);
-  }
-  if (buf.size() < needed) buf.resize(needed);
-  ByteWriter out(buf.data(), buf.size());
+  buf.clear();
+  ByteWriter out(&buf);
   WriteVisitor v{&out};
-  visit_body(v, w->bodies[static_cast<size_t>(index)], w->body_sims[static_cast<size_t>(index)]);
-  for (int32_t s = body.head_shape; s != k_null_index; s = w->shapes[static_cast<size_t>(s)].next_shape) {
-    visit_shape(v, w->shapes[static_cast<size_t>(s)], w->shape_geometries[static_cast<size_t>(s)]);
-  }
-  TANDEM_ASSERT(out.size() == needed);
-  return XXH3_64bits(buf.data(), out.size());
+  visit_body_with_shapes(w, index, v);
+  return XXH3_64bits(buf.data(), buf.size());
 }
 }  // namespace
 
 uint64_t body_state_hash(BodyId body) {
-  World* w = nullptr;
   int32_t index = 0;
-  if (!find_body(body, &w, &index) || w->locked) return 0;
-  return hash_body(w, index);
+  WorldState* w = find_body_state(body, &index);
+  return w == nullptr ? 0 : hash_body(*w, index);
 }
 
 Status world_body_hashes(WorldId world, std::vector<uint64_t>* out) {
-  World* w = nullptr;
-  Status s = resolve_for_state(world, "world_body_hashes", true, &w);
+  WorldState* w = nullptr;
+  Status s = resolve_world_state(world, "world_body_hashes", true, &w);
   if (!s.ok()) return s;
-  const int32_t cap = id_pool_capacity(w->body_pool);
+  const int32_t cap = static_cast<int32_t>(census(*w).body_slots);
   out->assign(static_cast<size_t>(cap), 0);
   for (int32_t i = 0; i < cap; ++i) {
-    if (id_pool_is_alive(w->body_pool, i)) (*out)[static_cast<size_t>(i)] = hash_body(w, i);
+    if (body_alive(*w, i)) (*out)[static_cast<size_t>(i)] = hash_body(*w, i);
   }
   return s;
 }

@@ -33,7 +33,7 @@ namespace {
 
 /// The byte of a state image that holds WorldDef::broad_phase, found by
 /// encoding two empty worlds that differ only in it (so nothing here depends
-/// on the layout of replay/state_internal.h); npos when they differ elsewhere too.
+/// on the field order of physics/state_fields.h); npos when they differ elsewhere too.
 size_t broad_phase_byte() {
   static const size_t offset = [] {
     std::vector<uint8_t> images[2];

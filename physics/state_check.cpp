@@ -1,13 +1,8 @@
-// state_validate.cpp — range and consistency validation of a decoded state image
-// (state.h describes the format, state_internal.h the design).
-#include "replay/state_internal.h"
-
-namespace tandem {
-namespace state_detail {
-
-// ---------------------------------------------------------------------------
-// Range and consistency validation (after the structural checks)
-// ---------------------------------------------------------------------------
+// state_check.cpp — checks of a decoded state image before it may replace a
+// world's state (state_access.h check_image): cross references first, then
+// every value against the engine's limits and every cached value against
+// the value derived from the others.
+//
 // Every restored value is held to the limits the public API enforces when the
 // value enters a world (limits.h, tandem.h), widened only where a legal
 // simulation can carry a value past the entry limit (speeds after a contact
@@ -18,7 +13,30 @@ namespace state_detail {
 // So an image can only hold states the API could have produced (or states
 // as safe), and no build's unchecked in-range arithmetic (contact_solver.cpp)
 // ever sees a value that would make it wrap where another build saturates.
+// A refusal names the record and field; replay turns that into a byte offset.
+#include <array>
+#include <string>
+#include <vector>
 
+#include "physics/body.h"
+#include "physics/broad_phase.h"
+#include "physics/contact.h"
+#include "physics/event_state.h"
+#include "physics/id_pool.h"
+#include "physics/joint_state.h"
+#include "physics/shape.h"
+#include "physics/state_fields.h"
+#include "physics/state_image.h"
+#include "physics/world.h"
+
+namespace tandem::state_access {
+
+namespace {
+
+using state_fields::first_joint_field_out_of_range;
+using state_fields::FieldRangeFailure;
+using state_fields::point_name;
+using state_fields::polygon_name;
 
 /// Largest |linear velocity| component restored for a moving body, m/s: the
 /// entry limit leaves room for what one contact solve can add after the
@@ -43,13 +61,12 @@ constexpr Q32 k_max_restored_coordinate = k_max_world_coordinate * 2;
 /// Largest |anchor| or |separation| of a stored contact point, m.
 constexpr Q32 k_max_restored_anchor = k_max_shape_size * 4;
 
-/// A record being checked: names it and finds a field's byte offset, both
-/// only when a check fails (the success path allocates nothing and walks no
-/// visitor, so a warm rollback's restore stays cheap).
+/// A record being checked: names it in messages; the offset of a refused
+/// field is found by replay (state_access.h, StateRefusal).
 struct RecordRef {
   enum Kind { world, body, shape, contact, joint } kind;
   size_t index = 0;
-  const WorldImage* img = nullptr;
+  const World* img = nullptr;
 
   std::string who() const {
     switch (kind) {
@@ -65,48 +82,34 @@ struct RecordRef {
     }
     return "?";
   }
-  size_t offset(const char* field) const {
+  RecordKind record_kind() const {
     switch (kind) {
-      case world: {
-        WorldDef d = img->def;
-        return 16 + field_offset_in(field, [&](OffsetVisitor& v) { visit_world_def(v, d); });
-      }
-      case body: {
-        Body b = img->bodies[index];
-        BodySim s = img->body_sims[index];
-        return img->body_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_body(v, b, s); });
-      }
-      case shape: {
-        Shape s = img->shapes[index];
-        ShapeGeometry g = img->shape_geometries[index];
-        return img->shape_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_shape(v, s, g); });
-      }
-      case contact: {
-        Contact c = img->contacts[index];
-        return img->contact_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_contact(v, c); });
-      }
-      case joint: {
-        Joint j = img->joints.joints[index];
-        return img->joint_offsets[index] + field_offset_in(field, [&](OffsetVisitor& v) { visit_joint(v, j); });
-      }
+      case world: return RecordKind::world;
+      case body: return RecordKind::body;
+      case shape: return RecordKind::shape;
+      case contact: return RecordKind::contact;
+      case joint: return RecordKind::joint;
     }
-    return 0;
+    return RecordKind::world;
   }
 };
 
 struct ImageChecker {
-  WorldImage& img;
-  const char* fn;
-  Status status;
+  World& img;
+  StateRefusal* out;
+  bool refused = false;
 
-  bool failed() const { return !status.ok(); }
+  bool failed() const { return refused; }
   /// Refuses at `field` of `r` (offset_field: where the offset points, when
   /// the message names a group of fields).
   void refuse(const RecordRef& r, const char* field, const std::string& what, const char* offset_field = nullptr) {
     if (failed()) return;
-    status = make_status(StatusCode::invalid_argument, std::string(fn) + ": offset " +
-                                                           std::to_string(r.offset(offset_field ? offset_field : field)) +
-                                                           ": " + r.who() + " " + field + " " + what);
+    refused = true;
+    out->where = StateRefusal::Where::field;
+    out->kind = r.record_kind();
+    out->index = static_cast<int64_t>(r.index);
+    out->field = offset_field ? offset_field : field;
+    out->message = r.who() + " " + field + " " + what;
   }
   static std::string text(Q32 v, const char* unit) { return to_string(v) + (*unit ? std::string(" ") + unit : ""); }
   /// lo ≤ v ≤ hi (lo_open: lo < v). The test is inline; the message is
@@ -194,7 +197,7 @@ CheckScratch& check_scratch() {
 
 /// Shape fields that need no body: materials, geometry reach, normals.
 void check_shapes(ImageChecker& c) {
-  WorldImage& img = c.img;
+  World& img = c.img;
   const int32_t shape_cap = static_cast<int32_t>(img.shapes.size());
   for (size_t i = 0; i < img.shapes.size() && !c.failed(); ++i) {
     if (img.shape_pool.alive[i] == 0) continue;
@@ -286,7 +289,7 @@ void check_shapes(ImageChecker& c) {
 }
 
 void check_bodies(ImageChecker& c) {
-  WorldImage& img = c.img;
+  World& img = c.img;
   std::vector<MassData>& masses = check_scratch().masses;
   static const std::string k_unnamed;  // messages name the body themselves
   for (size_t b = 0; b < img.bodies.size() && !c.failed(); ++b) {
@@ -364,7 +367,7 @@ void check_bodies(ImageChecker& c) {
 
 /// Shape bounds, after the bodies' poses have been checked.
 void check_shape_bounds(ImageChecker& c) {
-  WorldImage& img = c.img;
+  World& img = c.img;
   for (size_t i = 0; i < img.shapes.size() && !c.failed(); ++i) {
     if (img.shape_pool.alive[i] == 0) continue;
     const Shape& shape = img.shapes[i];
@@ -382,7 +385,7 @@ void check_shape_bounds(ImageChecker& c) {
 }
 
 void check_contacts(ImageChecker& c) {
-  WorldImage& img = c.img;
+  World& img = c.img;
   // Per body: the sum of |stored impulse| over its contact points, N·s.
   std::vector<Q32>& impulse_sum = check_scratch().impulse_sum;
   impulse_sum.assign(img.bodies.size(), Q32::zero());
@@ -474,15 +477,15 @@ void check_contacts(ImageChecker& c) {
 /// field keeps its default 0 in the kinds that do not use it), unit axes for
 /// prismatic and wheel joints, accumulated impulses as contact impulses.
 void check_joints(ImageChecker& c) {
-  WorldImage& img = c.img;
+  World& img = c.img;
   const Q32 unit_lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance_raw);
   for (size_t i = 0; i < img.joints.joints.size() && !c.failed(); ++i) {
     if (img.joint_pool.alive[i] == 0) continue;
     const Joint& j = img.joints.joints[i];
     const RecordRef r{RecordRef::joint, i, &img};
-    const JointFieldRange* bad = first_joint_field_out_of_range(j);
-    if (bad != nullptr) {
-      c.range(r, bad->field, bad->get(j), bad->lo, bad->hi, bad->unit);
+    FieldRangeFailure bad;
+    if (first_joint_field_out_of_range(j, &bad)) {
+      c.range(r, bad.field, bad.value, bad.lo, bad.hi, bad.unit);
       continue;
     }
     if (j.lower > j.upper) {
@@ -498,17 +501,145 @@ void check_joints(ImageChecker& c) {
   }
 }
 
-Status validate_image_values(WorldImage* img, const char* function) {
-  ImageChecker c{*img, function, Status{}};
+
+/// Cross references of a structurally decoded image: shape lists, pool
+/// indices, sort orders, live joint bodies, non-degenerate geometry.
+bool check_structure(const World& img, StateRefusal* out) {
+  const auto bad = [&](const std::string& msg) {
+    out->where = StateRefusal::Where::none;
+    out->message = msg;
+    return false;
+  };
+  const auto at = [&](RecordKind kind, int64_t index, const std::string& msg) {
+    out->where = StateRefusal::Where::record;
+    out->kind = kind;
+    out->index = index;
+    out->message = msg;
+    return false;
+  };
+  const int32_t body_cap = static_cast<int32_t>(img.bodies.size());
+  const int32_t shape_cap = static_cast<int32_t>(img.shapes.size());
+  if (img.body_pool.alive_count > k_max_bodies || img.shape_pool.alive_count > k_max_shapes) {
+    return bad("too many live bodies or shapes");
+  }
+  if (img.last_solver_body_count < 0 || img.last_solver_body_count > body_cap) {
+    return bad("last_solver_body_count " + std::to_string(img.last_solver_body_count) + " outside [0, " +
+               std::to_string(body_cap) + "]");
+  }
+  if (!(img.def.bounds.lower.x < img.def.bounds.upper.x && img.def.bounds.lower.y < img.def.bounds.upper.y)) {
+    return bad("world bounds must have lower < upper");
+  }
+  int64_t listed_shapes = 0;
+  for (int32_t b = 0; b < body_cap; ++b) {
+    if (img.body_pool.alive[static_cast<size_t>(b)] == 0) continue;
+    const Body& body = img.bodies[static_cast<size_t>(b)];
+    const std::string who = "body " + std::to_string(b);
+    if (body.sleep_island != k_null_index && (body.sleep_island < 0 || body.sleep_island >= body_cap ||
+                                              img.body_pool.alive[static_cast<size_t>(body.sleep_island)] == 0)) {
+      return at(RecordKind::body, b, who + " sleep_island " + std::to_string(body.sleep_island) + " is not a live body");
+    }
+    int32_t count = 0;
+    int32_t prev = k_null_index;
+    for (int32_t s = body.head_shape; s != k_null_index;) {
+      if (s < 0 || s >= shape_cap || img.shape_pool.alive[static_cast<size_t>(s)] == 0) {
+        return at(RecordKind::body, b, who + " shape list names shape " + std::to_string(s) + ", which is not a live shape");
+      }
+      const Shape& shape = img.shapes[static_cast<size_t>(s)];
+      if (shape.body_index != b || shape.prev_shape != prev || s <= prev) {
+        return at(RecordKind::shape, s,
+                  "shape " + std::to_string(s) + " is inconsistent with " + who +
+                      "'s shape list (body, prev_shape or order)");
+      }
+      if (++count > body.shape_count) break;
+      prev = s;
+      s = shape.next_shape;
+    }
+    if (count != body.shape_count) {
+      return at(RecordKind::body, b, who + " shape_count " + std::to_string(body.shape_count) + " but its list holds " +
+                                         (count > body.shape_count ? "more" : std::to_string(count)));
+    }
+    listed_shapes += count;
+  }
+  if (listed_shapes != img.shape_pool.alive_count) {
+    return bad("bodies list " + std::to_string(listed_shapes) + " shapes but " +
+               std::to_string(img.shape_pool.alive_count) + " shapes are alive");
+  }
+  // Geometry the narrow phase divides by or takes roots of.
+  for (int32_t i = 0; i < shape_cap; ++i) {
+    if (img.shape_pool.alive[static_cast<size_t>(i)] == 0) continue;
+    const ShapeGeometry& g = img.shape_geometries[static_cast<size_t>(i)];
+    bool valid = true;
+    switch (g.type) {
+      case ShapeType::circle: valid = g.circle.radius > Q32::zero(); break;
+      case ShapeType::capsule: valid = g.capsule.radius > Q32::zero() && g.capsule.center1 != g.capsule.center2; break;
+      case ShapeType::segment: valid = g.segment.point1 != g.segment.point2; break;
+      case ShapeType::polygon: valid = g.polygon.radius >= Q32::zero(); break;
+      case ShapeType::chain_segment:
+        valid = g.chain_segment.segment.point1 != g.chain_segment.segment.point2;
+        break;
+      case ShapeType::count: valid = false; break;
+    }
+    if (!valid) {
+      return at(RecordKind::shape, i,
+                "shape " + std::to_string(i) + " has degenerate geometry (zero or negative radius, or coincident points)");
+    }
+  }
+  uint64_t prev_key = 0;
+  for (size_t i = 0; i < img.contacts.size(); ++i) {
+    const Contact& c = img.contacts[i];
+    const int64_t ii = static_cast<int64_t>(i);
+    if (c.shape_a < 0 || c.shape_b >= shape_cap || c.shape_a >= c.shape_b || c.body_a < 0 || c.body_a >= body_cap ||
+        c.body_b < 0 || c.body_b >= body_cap) {
+      return at(RecordKind::contact, ii, "contact " + std::to_string(i) + " names shapes (" + std::to_string(c.shape_a) + ", " +
+                         std::to_string(c.shape_b) + ") / bodies (" + std::to_string(c.body_a) + ", " +
+                         std::to_string(c.body_b) + ") outside the pools or out of order");
+    }
+    const uint64_t key = contact_key(c);
+    if (i > 0 && key <= prev_key) return at(RecordKind::contact, ii, "contact " + std::to_string(i) + " is not sorted by shape pair");
+    prev_key = key;
+  }
+  const auto check_pairs = [&](const std::vector<PairRecord>& pairs, const char* what) {
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      const PairRecord& p = pairs[i];
+      if (p.shape_a < 0 || p.shape_a >= shape_cap || p.shape_b < 0 || p.shape_b >= shape_cap) {
+        return bad(std::string(what) + " " + std::to_string(i) + " names a shape outside the pool");
+      }
+      if (i > 0 && shape_pair_key(p.shape_a, p.shape_b) <=
+                       shape_pair_key(pairs[i - 1].shape_a, pairs[i - 1].shape_b)) {
+        return bad(std::string(what) + " " + std::to_string(i) + " is not sorted");
+      }
+    }
+    return true;
+  };
+  if (!check_pairs(img.events.touching, "touching pair")) return false;
+  if (!check_pairs(img.events.sensor_overlaps, "sensor overlap")) return false;
+  for (size_t i = 0; i < img.joints.joints.size(); ++i) {
+    if (img.joint_pool.alive[i] == 0) continue;
+    const Joint& j = img.joints.joints[i];
+    const auto live = [&](int32_t b) {
+      return b >= 0 && b < body_cap && img.body_pool.alive[static_cast<size_t>(b)] != 0;
+    };
+    if (!live(j.body_a) || !live(j.body_b) || j.body_a == j.body_b) {
+      return at(RecordKind::joint, static_cast<int64_t>(i), "joint " + std::to_string(i) + " joins bodies (" + std::to_string(j.body_a) +
+                                           ", " + std::to_string(j.body_b) + "), which are not two live bodies");
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool check_image(StateImage& image, StateRefusal* out) {
+  World& img = image.world;
+  if (!check_structure(img, out)) return false;
+  ImageChecker c{img, out};
   check_world(c);
   if (!c.failed()) check_shapes(c);
   if (!c.failed()) check_bodies(c);
   if (!c.failed()) check_shape_bounds(c);
   if (!c.failed()) check_contacts(c);
   if (!c.failed()) check_joints(c);
-  return c.status;
+  return !c.failed();
 }
 
-}  // namespace state_detail
-
-}  // namespace tandem
+}  // namespace tandem::state_access
