@@ -632,6 +632,9 @@ void warm_start_lanes(ContactLanes& cl, BodyState* states, int32_t previous) {
   LaneVelocities v;
   gather_velocities(cl, states, &v);
   for (ContactLanePoint& p : cl.points) {
+    int32_t any = 0;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) any |= p.present[l];
+    if (any == 0) continue;  // no lane has this point
     for (int32_t l = 0; l < k_contact_lanes; ++l) {
       const bool skip = p.present[l] == 0;
       const Vec2 n{cl.normal_x[l], cl.normal_y[l]}, t = right_perp(n);
@@ -689,17 +692,26 @@ void solve_lanes(ContactLanes& cl, StepContext* context, const int32_t* enabled)
 
   for (int32_t j = 0; j < 2; ++j) {
     ContactLanePoint& p = cl.points[j];
+    bool live[k_contact_lanes];
+    bool any_live = false;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      live[l] = p.present[l] != 0 && (enabled == nullptr || enabled[l] != 0);
+      any_live |= live[l];
+      skip[j][l] = true;
+    }
+    if (!any_live) continue;  // what the scalar loop never visits (no point, or not enabled)
     for (int32_t l = 0; l < k_contact_lanes; ++l) {
       const Vec2 n{cl.normal_x[l], cl.normal_y[l]};
       const Vec2 d = add(dc[l], sub(in_range::rotate(rot_b[l], Vec2{p.local_b_x[l], p.local_b_y[l]}),
                                     in_range::rotate(rot_a[l], Vec2{p.local_a_x[l], p.local_a_y[l]})));
       const Q32 s = add(in_range::dot(d, n), p.adjusted_separation[l]);
       const bool touching = s <= Q32::zero();
-      const bool closing = add(s, mul(h, add(p.approach_velocity[l], cl.kick[l]))) < Q32::zero();
-      const bool active = touching || closing;
-      const bool live = p.present[l] != 0 && (enabled == nullptr || enabled[l] != 0);
+      bool active = touching;
       if constexpr (use_bias) {
-        const bool act = live && active;
+        // The relax pass never reads `active`; the scalar path computes it
+        // there but has no use for it.
+        active = touching || add(s, mul(h, add(p.approach_velocity[l], cl.kick[l]))) < Q32::zero();
+        const bool act = live[l] && active;
         p.active_sub_step[l] = pick(act, k, p.active_sub_step[l]);
         const bool latch = act && cl.restitution[l] > Q32::zero() && p.approach_velocity[l] < min_approach &&
                            p.bounce_sub_step[l] != k;
@@ -713,22 +725,32 @@ void solve_lanes(ContactLanes& cl, StepContext* context, const int32_t* enabled)
       }
       const bool bouncing = p.bounce_sub_step[l] == k;
       const bool skipped =
-          !live || (!use_bias && !bouncing &&
-                    (!touching || (p.active_sub_step[l] != k && p.normal_impulse[l] == Q32::zero())));
+          !live[l] || (!use_bias && !bouncing &&
+                       (!touching || (p.active_sub_step[l] != k && p.normal_impulse[l] == Q32::zero())));
       skip[j][l] = skipped;
       // The scalar chain: bouncing → rigid, target speed; speculative →
-      // rigid, bias s/h; touching in the biased solve → soft; else rigid.
-      const bool soft = use_bias && touching && !bouncing;
-      const Q32 speculative_bias = s * inv_h;
-      const Q32 soft_bias = use_bias ? max(cl.bias_rate[l] * s, min_push_bias) : Q32::zero();
-      const Q32 bias = bouncing ? -p.bounce_velocity[l] : (!touching ? speculative_bias : soft_bias);
-      const Q32 mass = soft ? p.soft_normal_mass[l] : p.normal_mass[l];
-      const Q32 impulse_scale = soft ? cl.impulse_scale[l] : Q32::zero();
+      // rigid, bias s·(1/h); touching in the biased solve → soft, bias
+      // max(rate·s, −push); touching in relax → rigid, no bias. Both
+      // products are one Q32 multiplication by s, so one multiplication
+      // with the factor selected gives the same bits.
       const Q32 vn = relative_velocity(sub(v.vb[l], v.va[l]), n, v.wb[l], p.rn_b[l], v.wa[l], p.rn_a[l]);
-      Q32 impulse = sub(neg(mul(mass, add(vn, bias))), mul(impulse_scale, p.normal_impulse[l]));
+      Q32 impulse;
       if constexpr (use_bias) {
+        const bool soft = touching && !bouncing;
+        const Q32 scaled = (touching ? cl.bias_rate[l] : inv_h) * s;
+        const Q32 bias = bouncing ? -p.bounce_velocity[l] : (touching ? max(scaled, min_push_bias) : scaled);
+        const Q32 mass = soft ? p.soft_normal_mass[l] : p.normal_mass[l];
+        const Q32 impulse_scale = soft ? cl.impulse_scale[l] : Q32::zero();
+        impulse = sub(neg(mul(mass, add(vn, bias))), mul(impulse_scale, p.normal_impulse[l]));
         const bool gate = !bouncing && !touching && !active;
         impulse = pick(gate, min(impulse, Q32::zero()), impulse);
+      } else {
+        // Relax: impulse scale 0, so the scalar path's "− 0·λ" is exact
+        // (neg never returns the one value, INT64_MIN, that "− 0" changes);
+        // speculative points are skipped, so the bias is the bounce
+        // target or 0.
+        const Q32 bias = bouncing ? -p.bounce_velocity[l] : Q32::zero();
+        impulse = neg(mul(p.normal_mass[l], add(vn, bias)));
       }
       const Q32 accumulated = max(add(p.normal_impulse[l], impulse), Q32::zero());
       impulse = sub(accumulated, p.normal_impulse[l]);
@@ -740,6 +762,9 @@ void solve_lanes(ContactLanes& cl, StepContext* context, const int32_t* enabled)
 
   for (int32_t j = 0; j < 2; ++j) {
     ContactLanePoint& p = cl.points[j];
+    bool any = false;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) any |= !skip[j][l];
+    if (!any) continue;
     for (int32_t l = 0; l < k_contact_lanes; ++l) {
       const Vec2 n{cl.normal_x[l], cl.normal_y[l]}, t = right_perp(n);
       const bool skipped = skip[j][l];
