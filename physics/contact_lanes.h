@@ -20,12 +20,22 @@
 // colour, whose constraints may share bodies, stays in the scalar array and
 // is solved serially after the lanes.
 //
+// Status: correct (same bits, tested) but NOT faster. No compiler vectorises
+// a 64×64→128 product with rounding, so each lane still runs scalar
+// multiplies; the lane form adds the selects and keeps the block's
+// velocities in memory instead of registers. callgrind counts ~14 % more
+// instructions for solve + relax on pyramid-100 and the wall clock is slower
+// (docs/benchmarks.md, "Wide contact solver"), so the build's default path
+// is the scalar one (CMake TANDEM_CONTACT_LANES=OFF). The blocks are the
+// layout an explicit vector kernel would consume.
+//
 // Rejected (for now): blocks of 8 (no 8-wide 64-bit integer multiply on the
 // targets we build; 4 fills an AVX2 register of 64-bit values); an explicit
 // intrinsic path: a 64×64→128 product with rounding and exact saturation
-// has no vector instruction, and shared/reference/wide-products measured a
-// 4-lane AVX2 64×32 product at only ~1.4× a branch-free scalar one
-// (docs/benchmarks.md, "Wide contact solver").
+// has no vector instruction (four 32×32 partial products, carries, then the
+// rounding and the saturation test per lane), and
+// shared/reference/wide-products measured even a 4-lane AVX2 64×32 product
+// at only ~1.4× a branch-free scalar one.
 #pragma once
 
 #include <cstdint>

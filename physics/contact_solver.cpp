@@ -102,6 +102,14 @@
 // leaves the same marks. record_approach and store_impulses write only their
 // own constraint or contact and run over all constraints at once.
 //
+// Lanes (contact_lanes.h): on ContactSolverPath::lanes the colours are
+// transposed into blocks of k_contact_lanes constraints after prepare and
+// warm start, solve, relax, record_approach and store run over the blocks
+// (…_lanes kernels below: the scalar functions with the constraint index
+// turned into a lane index and branches into selects); the overflow colour
+// stays on the scalar functions. Same bits by construction
+// (docs/determinism.md, "The contact solver's two paths").
+//
 // Rejected: Box2D v3's end-of-step restitution (energy loss above); holding
 // a bounce target for the rest of the step (fights gravity, gains energy);
 // re-normalising rotations here (solver.cpp's integrate_rotation does it
@@ -116,7 +124,7 @@
 #include "physics/world.h"
 
 #ifndef TANDEM_CONTACT_LANES
-#define TANDEM_CONTACT_LANES 1
+#define TANDEM_CONTACT_LANES 0  // CMake sets it (option TANDEM_CONTACT_LANES)
 #endif
 
 namespace tandem {
