@@ -856,9 +856,81 @@ void warm_start_contacts(StepContext* context) {
 
 namespace {
 
-/// One pass over one constraint. use_bias: the biased solve (latches
-/// bounces, soft push); otherwise a relax pass.
-void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+/// The arithmetic of solve_constraint, two ways. SaturatingOps: the in_range
+/// helpers (the same bits in every build, saturating where the checked
+/// operators do). WrappingOps (below): the same products and roundings with
+/// no saturation test at all, plus a conservative witness that tells
+/// afterwards whether any operation might have saturated.
+struct SaturatingOps {
+  static Q32 mul(Q32 a, Q32 b) { return in_range::mul(a, b); }
+  static Q32 add(Q32 a, Q32 b) { return in_range::add(a, b); }
+  static Q32 sub(Q32 a, Q32 b) { return in_range::sub(a, b); }
+  static Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return in_range::sum2(a, b, c, d); }
+  static Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return in_range::sum4(a, b, c, d, e, f, g, h);
+  }
+  static void vet(Q32) {}
+  static bool clean() { return true; }
+};
+
+#if TANDEM_FAST_MATH_UNCHECKED && !TANDEM_FIXED_CHECKS
+#define TANDEM_CONTACT_WRAP_FIRST 1
+/// Wrapping arithmetic with a saturation witness (release builds with a
+/// native 128-bit type and no fault reports). Each rounding is fast::
+/// round_shift's in-range formula without its test; each add/sub wraps.
+/// What it records, branch-free (an OR per operation):
+///   wide   |= hi + 2^29 for each rounded 128-bit sum p (hi = p >> 64):
+///          no bit ≥ 30 set ⇔ −2^93 ≤ p < 2^93, so the result is exact
+///          round-to-nearest, |result| ≤ 2^61, and far from the
+///          saturation threshold 2^95 − 2^31;
+///   narrow |= r + 2^62 for each add/sub result r and each vetted operand:
+///          bit 63 clear ⇔ −2^62 ≤ r < 2^62.
+/// The proof that clean() means "the same bits as SaturatingOps": every
+/// add/sub operand is a vetted input, a rounded result (|x| ≤ 2^61), an
+/// earlier add/sub result (both: −2^62 ≤ x < 2^62) or a min/max/clamp of
+/// those, so the exact sum lies in [−2^63, 2^63): no wrap; its one value
+/// that saturates, the raw minimum −2^63, fails the result test. So every
+/// add/sub with a clear witness is one where fixed.h's operator+/− does not
+/// saturate (neg(x) = 0 − x
+/// needs no vetted operand: its only saturating input, the raw minimum,
+/// wraps to itself and is caught by the result test). Every rounding with
+/// a clear witness is below the saturation threshold. A set witness may be
+/// a false alarm (it is conservative); the caller then discards the result
+/// and runs SaturatingOps.
+struct WrappingOps {
+  uint64_t wide = 0;
+  uint64_t narrow = 0;
+  Q32 round(fast::u128 sum) {
+    const uint64_t hi = static_cast<uint64_t>(sum >> 64);
+    wide |= hi + (uint64_t{1} << 29);
+    return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(sum), hi));
+  }
+  Q32 wrapped(uint64_t r) {
+    narrow |= r + (uint64_t{1} << 62);
+    return Q32::from_raw(static_cast<int64_t>(r));
+  }
+  Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
+  Q32 add(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)); }
+  Q32 sub(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)); }
+  Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
+  Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw) + fast::product(e.raw, f.raw) +
+                 fast::product(g.raw, h.raw));
+  }
+  /// An input used as an add/sub operand: must satisfy |x| < 2^62.
+  void vet(Q32 x) { narrow |= static_cast<uint64_t>(x.raw) + (uint64_t{1} << 62); }
+  bool clean() const { return ((wide >> 30) | (narrow >> 63)) == 0; }
+};
+#else
+#define TANDEM_CONTACT_WRAP_FIRST 0
+#endif
+
+/// One pass over one constraint with the arithmetic of Ops. use_bias: the
+/// biased solve (latches bounces, soft push); otherwise a relax pass.
+/// Nothing is written (constraint points, bodies, bounce marks) unless
+/// ops.clean() holds at the end; returns whether it wrote.
+template <typename Ops>
+bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use_bias, Ops& o) {
   BodyState dummy_a{}, dummy_b{};
   BodyState* a = body_state(context->states, cc.solver_a, &dummy_a);
   BodyState* b = body_state(context->states, cc.solver_b, &dummy_b);
@@ -868,34 +940,55 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
   const Q32 ma = cc.inv_mass_a, mb = cc.inv_mass_b;
   Vec2 va = a->linear_velocity, vb = b->linear_velocity;
   Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-  const Vec2 dc = in_range::sub(b->center, a->center);
+  o.vet(va.x), o.vet(va.y), o.vet(vb.x), o.vet(vb.y), o.vet(wa), o.vet(wb);
+  o.vet(a->center.x), o.vet(a->center.y), o.vet(b->center.x), o.vet(b->center.y), o.vet(cc.kick);
+  const Vec2 dc = {o.sub(b->center.x, a->center.x), o.sub(b->center.y, a->center.y)};
+  const auto rotate = [&o](Rot q, Vec2 v) {
+    return Vec2{o.sum2(q.c, v.x, o.sub(Q32::zero(), q.s), v.y), o.sum2(q.s, v.x, q.c, v.y)};
+  };
+  const auto apply = [&](Q32 impulse, Vec2 d, Q32 angular_a, Q32 angular_b) {
+    const Q32 ka = o.mul(ma, impulse), kb = o.mul(mb, impulse);
+    va = {o.sub(va.x, o.mul(ka, d.x)), o.sub(va.y, o.mul(ka, d.y))};
+    wa = o.sub(wa, o.mul(impulse, angular_a));
+    vb = {o.add(vb.x, o.mul(kb, d.x)), o.add(vb.y, o.mul(kb, d.y))};
+    wb = o.add(wb, o.mul(impulse, angular_b));
+  };
+  // relative_velocity's formula: sum4 of dv·d and ω_B (r_B × d) − ω_A (r_A × d).
+  const auto relative = [&](Vec2 d, Q32 rd_b, Q32 rd_a) {
+    return o.sum4(o.sub(vb.x, va.x), d.x, o.sub(vb.y, va.y), d.y, wb, rd_b, o.sub(Q32::zero(), wa), rd_a);
+  };
+  // The points' mutable state, written back only at the end.
+  struct PointState {
+    Q32 normal_impulse, tangent_impulse, bounce_velocity;
+    int32_t active_sub_step, bounce_sub_step;
+  };
+  PointState ps[2];
   bool skip[2] = {false, false};
+  bool bounced = false;
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
-    ContactConstraintPoint& cp = cc.points[j];
-    const Vec2 d = in_range::add(dc, in_range::sub(in_range::rotate(b->rotation, cp.local_b),
-                                                    in_range::rotate(a->rotation, cp.local_a)));
-    const Q32 s = in_range::add(in_range::dot(d, n), cp.adjusted_separation);
+    const ContactConstraintPoint& cp = cc.points[j];
+    PointState& p = ps[j];
+    p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.active_sub_step, cp.bounce_sub_step};
+    o.vet(cp.adjusted_separation), o.vet(cp.approach_velocity), o.vet(p.normal_impulse), o.vet(p.tangent_impulse);
+    const Vec2 rb = rotate(b->rotation, cp.local_b), ra = rotate(a->rotation, cp.local_a);
+    const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
+    const Q32 s = o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
     const bool touching = s <= Q32::zero();
-    const bool active =
-        touching ||
-        in_range::add(s, in_range::mul(h, in_range::add(cp.approach_velocity, cc.kick))) < Q32::zero();
+    const bool active = touching || o.add(s, o.mul(h, o.add(cp.approach_velocity, cc.kick))) < Q32::zero();
     if (use_bias) {
       if (active) {
-        cp.active_sub_step = k;
+        p.active_sub_step = k;
         if (cc.restitution > Q32::zero() && cp.approach_velocity < -context->restitution_threshold &&
-            cp.bounce_sub_step != k) {
-          cp.bounce_sub_step = k;
-          cp.bounce_velocity = -(cc.restitution * cp.approach_velocity);
-          if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
-          if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
-          atomic_store_relaxed(&context->bounced_this_sub_step, true);
+            p.bounce_sub_step != k) {
+          p.bounce_sub_step = k;
+          p.bounce_velocity = -(cc.restitution * cp.approach_velocity);
+          bounced = true;
         }
       }
     }
-    const bool bouncing = cp.bounce_sub_step == k;
-    if (!use_bias && !bouncing &&
-        (!touching || (cp.active_sub_step != k && cp.normal_impulse == Q32::zero()))) {
+    const bool bouncing = p.bounce_sub_step == k;
+    if (!use_bias && !bouncing && (!touching || (p.active_sub_step != k && p.normal_impulse == Q32::zero()))) {
       skip[j] = true;  // relax gate: speculative, or idle this sub-step
       continue;
     }
@@ -903,7 +996,7 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
     Q32 mass = cp.normal_mass;
     Q32 impulse_scale = Q32::zero();
     if (bouncing) {
-      bias = -cp.bounce_velocity;
+      bias = -p.bounce_velocity;
     } else if (!touching) {
       bias = s * context->inv_h;  // speculative: only stop it reaching the surface
     } else if (use_bias) {
@@ -911,30 +1004,62 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
       mass = cp.soft_normal_mass;
       impulse_scale = cc.softness.impulse_scale;
     }
-    const Q32 vn = relative_velocity(in_range::sub(vb, va), n, wb, cp.rn_b, wa, cp.rn_a);
-    Q32 impulse = in_range::sub(in_range::neg(in_range::mul(mass, in_range::add(vn, bias))),
-                                in_range::mul(impulse_scale, cp.normal_impulse));
+    o.vet(bias);
+    const Q32 vn = relative(n, cp.rn_b, cp.rn_a);
+    Q32 impulse =
+        o.sub(o.sub(Q32::zero(), o.mul(mass, o.add(vn, bias))), o.mul(impulse_scale, p.normal_impulse));
     if (use_bias && !bouncing && !touching && !active) impulse = min(impulse, Q32::zero());
-    const Q32 accumulated = max(in_range::add(cp.normal_impulse, impulse), Q32::zero());
-    impulse = in_range::sub(accumulated, cp.normal_impulse);
-    cp.normal_impulse = accumulated;
-    apply_impulse(impulse, n, ma, cp.angular_n_a, mb, cp.angular_n_b, &va, &wa, &vb, &wb);
+    const Q32 accumulated = max(o.add(p.normal_impulse, impulse), Q32::zero());
+    impulse = o.sub(accumulated, p.normal_impulse);
+    p.normal_impulse = accumulated;
+    apply(impulse, n, cp.angular_n_a, cp.angular_n_b);
   }
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
     if (skip[j]) continue;
-    ContactConstraintPoint& cp = cc.points[j];
-    const Q32 vt = relative_velocity(in_range::sub(vb, va), t, wb, cp.rt_b, wa, cp.rt_a);
-    const Q32 max_friction = in_range::mul(cc.friction, cp.normal_impulse);
-    const Q32 accumulated = clamp(in_range::sub(cp.tangent_impulse, in_range::mul(cp.tangent_mass, vt)),
-                                  in_range::neg(max_friction), max_friction);
-    const Q32 impulse = in_range::sub(accumulated, cp.tangent_impulse);
-    cp.tangent_impulse = accumulated;
-    apply_impulse(impulse, t, ma, cp.angular_t_a, mb, cp.angular_t_b, &va, &wa, &vb, &wb);
+    const ContactConstraintPoint& cp = cc.points[j];
+    PointState& p = ps[j];
+    const Q32 vt = relative(t, cp.rt_b, cp.rt_a);
+    const Q32 max_friction = o.mul(cc.friction, p.normal_impulse);
+    const Q32 accumulated = clamp(o.sub(p.tangent_impulse, o.mul(cp.tangent_mass, vt)),
+                                  o.sub(Q32::zero(), max_friction), max_friction);
+    const Q32 impulse = o.sub(accumulated, p.tangent_impulse);
+    p.tangent_impulse = accumulated;
+    apply(impulse, t, cp.angular_t_a, cp.angular_t_b);
   }
 
+  if (!o.clean()) return false;
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    const PointState& p = ps[j];
+    cp.normal_impulse = p.normal_impulse;
+    cp.tangent_impulse = p.tangent_impulse;
+    cp.bounce_velocity = p.bounce_velocity;
+    cp.active_sub_step = p.active_sub_step;
+    cp.bounce_sub_step = p.bounce_sub_step;
+  }
+  if (bounced) {
+    if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
+    if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
+    atomic_store_relaxed(&context->bounced_this_sub_step, true);
+  }
   store_velocity(a, va, wa, ma, cc.inv_inertia_a);
   store_velocity(b, vb, wb, mb, cc.inv_inertia_b);
+  return true;
+}
+
+/// One pass over one constraint (see solve_constraint_with). Release builds
+/// with a native 128-bit type first run the wrapping arithmetic and keep its
+/// result when its witness shows that nothing came near saturation (every
+/// ordinary contact); otherwise, and in every other build, the saturating
+/// arithmetic. Same bits either way.
+void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+#if TANDEM_CONTACT_WRAP_FIRST
+  WrappingOps wrapping;
+  if (solve_constraint_with(cc, context, use_bias, wrapping)) return;
+#endif
+  SaturatingOps saturating;
+  solve_constraint_with(cc, context, use_bias, saturating);
 }
 
 }  // namespace
