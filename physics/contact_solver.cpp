@@ -225,6 +225,75 @@ inline Q32 dot(Vec2 a, Vec2 b) { return sum2(a.x, b.x, a.y, b.y); }
 inline Vec2 rotate(Rot q, Vec2 v) { return {sum2(q.c, v.x, neg(q.s), v.y), sum2(q.s, v.x, q.c, v.y)}; }
 }  // namespace in_range
 
+/// The arithmetic of solve_constraint and warm start, two ways. SaturatingOps: the in_range
+/// helpers (the same bits in every build, saturating where the checked
+/// operators do). WrappingOps (below): the same products and roundings with
+/// no saturation test at all, plus a conservative witness that tells
+/// afterwards whether any operation might have saturated.
+struct SaturatingOps {
+  static Q32 mul(Q32 a, Q32 b) { return in_range::mul(a, b); }
+  static Q32 add(Q32 a, Q32 b) { return in_range::add(a, b); }
+  static Q32 sub(Q32 a, Q32 b) { return in_range::sub(a, b); }
+  static Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return in_range::sum2(a, b, c, d); }
+  static Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return in_range::sum4(a, b, c, d, e, f, g, h);
+  }
+  static void vet(Q32) {}
+  static bool clean() { return true; }
+};
+
+#if TANDEM_FAST_MATH_UNCHECKED && !TANDEM_FIXED_CHECKS
+#define TANDEM_CONTACT_WRAP_FIRST 1
+/// Wrapping arithmetic with a saturation witness (release builds with a
+/// native 128-bit type and no fault reports). Each rounding is fast::
+/// round_shift's in-range formula without its test; each add/sub wraps.
+/// What it records, branch-free (an OR per operation):
+///   wide   |= hi + 2^29 for each rounded 128-bit sum p (hi = p >> 64):
+///          no bit ≥ 30 set ⇔ −2^93 ≤ p < 2^93, so the result is exact
+///          round-to-nearest, |result| ≤ 2^61, and far from the
+///          saturation threshold 2^95 − 2^31;
+///   narrow |= r + 2^62 for each add/sub result r and each vetted operand:
+///          bit 63 clear ⇔ −2^62 ≤ r < 2^62.
+/// The proof that clean() means "the same bits as SaturatingOps": every
+/// add/sub operand is a vetted input, a rounded result (|x| ≤ 2^61), an
+/// earlier add/sub result (both: −2^62 ≤ x < 2^62) or a min/max/clamp of
+/// those, so the exact sum lies in [−2^63, 2^63): no wrap; its one value
+/// that saturates, the raw minimum −2^63, fails the result test. So every
+/// add/sub with a clear witness is one where fixed.h's operator+/− does not
+/// saturate (neg(x) = 0 − x
+/// needs no vetted operand: its only saturating input, the raw minimum,
+/// wraps to itself and is caught by the result test). Every rounding with
+/// a clear witness is below the saturation threshold. A set witness may be
+/// a false alarm (it is conservative); the caller then discards the result
+/// and runs SaturatingOps.
+struct WrappingOps {
+  uint64_t wide = 0;
+  uint64_t narrow = 0;
+  Q32 round(fast::u128 sum) {
+    const uint64_t hi = static_cast<uint64_t>(sum >> 64);
+    wide |= hi + (uint64_t{1} << 29);
+    return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(sum), hi));
+  }
+  Q32 wrapped(uint64_t r) {
+    narrow |= r + (uint64_t{1} << 62);
+    return Q32::from_raw(static_cast<int64_t>(r));
+  }
+  Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
+  Q32 add(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)); }
+  Q32 sub(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)); }
+  Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
+  Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw) + fast::product(e.raw, f.raw) +
+                 fast::product(g.raw, h.raw));
+  }
+  /// An input used as an add/sub operand: must satisfy |x| < 2^62.
+  void vet(Q32 x) { narrow |= static_cast<uint64_t>(x.raw) + (uint64_t{1} << 62); }
+  bool clean() const { return ((wide >> 30) | (narrow >> 63)) == 0; }
+};
+#else
+#define TANDEM_CONTACT_WRAP_FIRST 0
+#endif
+
 /// The relative velocity of the contact point along a direction d (the
 /// normal or the tangent): (v_B − v_A)·d + ω_B (r_B × d) − ω_A (r_A × d),
 /// using (ω × r)·d = ω (r × d). The four products are summed exactly in 128
@@ -824,106 +893,56 @@ void record_contact_approach(StepContext* context) {
                });
 }
 
+namespace {
+
+/// Warm start of one constraint with the arithmetic of Ops: the bodies are
+/// written only if ops.clean() holds at the end; returns whether they were.
+/// (Zeroing a bounced point's impulse does not depend on the arithmetic.)
+template <typename Ops>
+bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_t previous, Ops& o) {
+  BodyState dummy_a{}, dummy_b{};
+  BodyState* a = body_state(states, cc.solver_a, &dummy_a);
+  BodyState* b = body_state(states, cc.solver_b, &dummy_b);
+  const Vec2 n = cc.normal, t = right_perp(n);
+  Vec2 va = a->linear_velocity, vb = b->linear_velocity;
+  Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+  o.vet(va.x), o.vet(va.y), o.vet(vb.x), o.vet(vb.y), o.vet(wa), o.vet(wb);
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
+    const Vec2 p{o.sum2(cp.normal_impulse, n.x, cp.tangent_impulse, t.x),
+                 o.sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
+    const Q32 spin_a = o.sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
+    const Q32 spin_b = o.sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
+    va = {o.sub(va.x, o.mul(cc.inv_mass_a, p.x)), o.sub(va.y, o.mul(cc.inv_mass_a, p.y))};
+    wa = o.sub(wa, spin_a);
+    vb = {o.add(vb.x, o.mul(cc.inv_mass_b, p.x)), o.add(vb.y, o.mul(cc.inv_mass_b, p.y))};
+    wb = o.add(wb, spin_b);
+  }
+  if (!o.clean()) return false;
+  store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
+  store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
+  return true;
+}
+
+}  // namespace
+
 void warm_start_contacts(StepContext* context) {
   BodyState* states = context->states;
   const int32_t previous = context->sub_step_index - 1;
   for_each_by_colour(
       context, "warm_start", [states, previous](ContactLanes& cl) { warm_start_lanes(cl, states, previous); },
       [states, previous](ContactConstraint& cc) {
-    BodyState dummy_a{}, dummy_b{};
-    BodyState* a = body_state(states, cc.solver_a, &dummy_a);
-    BodyState* b = body_state(states, cc.solver_b, &dummy_b);
-    const Vec2 n = cc.normal, t = right_perp(n);
-    Vec2 va = a->linear_velocity, vb = b->linear_velocity;
-    Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-    for (int32_t j = 0; j < cc.point_count; ++j) {
-      ContactConstraintPoint& cp = cc.points[j];
-      if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
-      using namespace in_range;
-      const Vec2 p{sum2(cp.normal_impulse, n.x, cp.tangent_impulse, t.x),
-                   sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
-      const Q32 spin_a = sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
-      const Q32 spin_b = sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
-      va = {sub(va.x, mul(cc.inv_mass_a, p.x)), sub(va.y, mul(cc.inv_mass_a, p.y))};
-      wa = sub(wa, spin_a);
-      vb = {add(vb.x, mul(cc.inv_mass_b, p.x)), add(vb.y, mul(cc.inv_mass_b, p.y))};
-      wb = add(wb, spin_b);
-    }
-    store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
-    store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
-  });
+#if TANDEM_CONTACT_WRAP_FIRST
+        WrappingOps wrapping;
+        if (warm_start_constraint_with(cc, states, previous, wrapping)) return;
+#endif
+        SaturatingOps saturating;
+        warm_start_constraint_with(cc, states, previous, saturating);
+      });
 }
 
 namespace {
-
-/// The arithmetic of solve_constraint, two ways. SaturatingOps: the in_range
-/// helpers (the same bits in every build, saturating where the checked
-/// operators do). WrappingOps (below): the same products and roundings with
-/// no saturation test at all, plus a conservative witness that tells
-/// afterwards whether any operation might have saturated.
-struct SaturatingOps {
-  static Q32 mul(Q32 a, Q32 b) { return in_range::mul(a, b); }
-  static Q32 add(Q32 a, Q32 b) { return in_range::add(a, b); }
-  static Q32 sub(Q32 a, Q32 b) { return in_range::sub(a, b); }
-  static Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return in_range::sum2(a, b, c, d); }
-  static Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
-    return in_range::sum4(a, b, c, d, e, f, g, h);
-  }
-  static void vet(Q32) {}
-  static bool clean() { return true; }
-};
-
-#if TANDEM_FAST_MATH_UNCHECKED && !TANDEM_FIXED_CHECKS
-#define TANDEM_CONTACT_WRAP_FIRST 1
-/// Wrapping arithmetic with a saturation witness (release builds with a
-/// native 128-bit type and no fault reports). Each rounding is fast::
-/// round_shift's in-range formula without its test; each add/sub wraps.
-/// What it records, branch-free (an OR per operation):
-///   wide   |= hi + 2^29 for each rounded 128-bit sum p (hi = p >> 64):
-///          no bit ≥ 30 set ⇔ −2^93 ≤ p < 2^93, so the result is exact
-///          round-to-nearest, |result| ≤ 2^61, and far from the
-///          saturation threshold 2^95 − 2^31;
-///   narrow |= r + 2^62 for each add/sub result r and each vetted operand:
-///          bit 63 clear ⇔ −2^62 ≤ r < 2^62.
-/// The proof that clean() means "the same bits as SaturatingOps": every
-/// add/sub operand is a vetted input, a rounded result (|x| ≤ 2^61), an
-/// earlier add/sub result (both: −2^62 ≤ x < 2^62) or a min/max/clamp of
-/// those, so the exact sum lies in [−2^63, 2^63): no wrap; its one value
-/// that saturates, the raw minimum −2^63, fails the result test. So every
-/// add/sub with a clear witness is one where fixed.h's operator+/− does not
-/// saturate (neg(x) = 0 − x
-/// needs no vetted operand: its only saturating input, the raw minimum,
-/// wraps to itself and is caught by the result test). Every rounding with
-/// a clear witness is below the saturation threshold. A set witness may be
-/// a false alarm (it is conservative); the caller then discards the result
-/// and runs SaturatingOps.
-struct WrappingOps {
-  uint64_t wide = 0;
-  uint64_t narrow = 0;
-  Q32 round(fast::u128 sum) {
-    const uint64_t hi = static_cast<uint64_t>(sum >> 64);
-    wide |= hi + (uint64_t{1} << 29);
-    return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(sum), hi));
-  }
-  Q32 wrapped(uint64_t r) {
-    narrow |= r + (uint64_t{1} << 62);
-    return Q32::from_raw(static_cast<int64_t>(r));
-  }
-  Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
-  Q32 add(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)); }
-  Q32 sub(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)); }
-  Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
-  Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
-    return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw) + fast::product(e.raw, f.raw) +
-                 fast::product(g.raw, h.raw));
-  }
-  /// An input used as an add/sub operand: must satisfy |x| < 2^62.
-  void vet(Q32 x) { narrow |= static_cast<uint64_t>(x.raw) + (uint64_t{1} << 62); }
-  bool clean() const { return ((wide >> 30) | (narrow >> 63)) == 0; }
-};
-#else
-#define TANDEM_CONTACT_WRAP_FIRST 0
-#endif
 
 /// One pass over one constraint with the arithmetic of Ops. use_bias: the
 /// biased solve (latches bounces, soft push); otherwise a relax pass.
