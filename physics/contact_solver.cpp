@@ -906,7 +906,12 @@ bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_
   const Vec2 n = cc.normal, t = right_perp(n);
   Vec2 va = a->linear_velocity, vb = b->linear_velocity;
   Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-  o.vet(va.x), o.vet(va.y), o.vet(vb.x), o.vet(vb.y), o.vet(wa), o.vet(wb);
+  o.vet(va.x);
+  o.vet(va.y);
+  o.vet(vb.x);
+  o.vet(vb.y);
+  o.vet(wa);
+  o.vet(wb);
   for (int32_t j = 0; j < cc.point_count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
     if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
@@ -959,8 +964,17 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
   const Q32 ma = cc.inv_mass_a, mb = cc.inv_mass_b;
   Vec2 va = a->linear_velocity, vb = b->linear_velocity;
   Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-  o.vet(va.x), o.vet(va.y), o.vet(vb.x), o.vet(vb.y), o.vet(wa), o.vet(wb);
-  o.vet(a->center.x), o.vet(a->center.y), o.vet(b->center.x), o.vet(b->center.y), o.vet(cc.kick);
+  o.vet(va.x);
+  o.vet(va.y);
+  o.vet(vb.x);
+  o.vet(vb.y);
+  o.vet(wa);
+  o.vet(wb);
+  o.vet(a->center.x);
+  o.vet(a->center.y);
+  o.vet(b->center.x);
+  o.vet(b->center.y);
+  o.vet(cc.kick);
   const Vec2 dc = {o.sub(b->center.x, a->center.x), o.sub(b->center.y, a->center.y)};
   const auto rotate = [&o](Rot q, Vec2 v) {
     return Vec2{o.sum2(q.c, v.x, o.sub(Q32::zero(), q.s), v.y), o.sum2(q.s, v.x, q.c, v.y)};
@@ -989,7 +1003,10 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
     const ContactConstraintPoint& cp = cc.points[j];
     PointState& p = ps[j];
     p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.active_sub_step, cp.bounce_sub_step};
-    o.vet(cp.adjusted_separation), o.vet(cp.approach_velocity), o.vet(p.normal_impulse), o.vet(p.tangent_impulse);
+    o.vet(cp.adjusted_separation);
+    o.vet(cp.approach_velocity);
+    o.vet(p.normal_impulse);
+    o.vet(p.tangent_impulse);
     const Vec2 rb = rotate(b->rotation, cp.local_b), ra = rotate(a->rotation, cp.local_a);
     const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
     const Q32 s = o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
