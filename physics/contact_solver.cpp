@@ -102,6 +102,14 @@
 // leaves the same marks. record_approach and store_impulses write only their
 // own constraint or contact and run over all constraints at once.
 //
+// Lanes (contact_lanes.h): on ContactSolverPath::lanes the colours are
+// transposed into blocks of k_contact_lanes constraints after prepare and
+// warm start, solve, relax, record_approach and store run over the blocks
+// (…_lanes kernels below: the scalar functions with the constraint index
+// turned into a lane index and branches into selects); the overflow colour
+// stays on the scalar functions. Same bits by construction
+// (docs/determinism.md, "The contact solver's two paths").
+//
 // Rejected: Box2D v3's end-of-step restitution (energy loss above); holding
 // a bounce target for the rest of the step (fights gravity, gains energy);
 // re-normalising rotations here (solver.cpp's integrate_rotation does it
@@ -112,12 +120,20 @@
 #include <bit>
 
 #include "physics/contact_colour.h"
+#include "physics/contact_lanes.h"
 #include "physics/fast_math.h"
 #include "physics/world.h"
+
+#ifndef TANDEM_CONTACT_LANES
+#define TANDEM_CONTACT_LANES 0  // CMake sets it (option TANDEM_CONTACT_LANES)
+#endif
 
 namespace tandem {
 
 namespace {
+
+/// The process-wide path (ContactSolverPath), read once per step by prepare.
+int32_t g_contact_solver_path = TANDEM_CONTACT_LANES ? 1 : 0;
 
 /// Constraints per block of the parallel loops (fixed: block boundaries
 /// never depend on the worker count).
@@ -125,32 +141,35 @@ constexpr int32_t k_constraint_block = 32;
 
 /// Calls per_constraint(cc) for every constraint, colour by colour (each
 /// colour's blocks in parallel, a barrier between colours), then the
-/// overflow colour serially in order (see "Workers" above).
-template <typename PerConstraint>
-void for_each_by_colour(StepContext* context, const char* stage, PerConstraint&& per_constraint) {
+/// overflow colour serially in order (see "Workers" above). On the lanes
+/// path the colours run as per_block(lanes) over their lane blocks instead
+/// (k_constraint_block / k_contact_lanes blocks per task: the same block
+/// boundaries for every worker count).
+template <typename PerBlock, typename PerConstraint>
+void for_each_by_colour(StepContext* context, const char* stage, PerBlock&& per_block, PerConstraint&& per_constraint) {
   ContactConstraint* constraints = context->constraints;
   const int32_t* offsets = context->colour_offsets;
-  for (int32_t k = 0; k < k_contact_colour_count; ++k) {
-    ContactConstraint* first = constraints + offsets[k];
-    parallel_for(context->tasks, stage, offsets[k + 1] - offsets[k], k_constraint_block,
-                 [first, &per_constraint](int32_t begin, int32_t end) {
-                   for (int32_t i = begin; i < end; ++i) per_constraint(first[i]);
-                 });
+  if (context->lanes != nullptr) {
+    const int32_t* lane_offsets = context->lane_offsets;
+    for (int32_t k = 0; k < k_contact_colour_count; ++k) {
+      ContactLanes* first = context->lanes + lane_offsets[k];
+      parallel_for(context->tasks, stage, lane_offsets[k + 1] - lane_offsets[k], k_constraint_block / k_contact_lanes,
+                   [first, &per_block](int32_t begin, int32_t end) {
+                     for (int32_t i = begin; i < end; ++i) per_block(first[i]);
+                   });
+    }
+  } else {
+    for (int32_t k = 0; k < k_contact_colour_count; ++k) {
+      ContactConstraint* first = constraints + offsets[k];
+      parallel_for(context->tasks, stage, offsets[k + 1] - offsets[k], k_constraint_block,
+                   [first, &per_constraint](int32_t begin, int32_t end) {
+                     for (int32_t i = begin; i < end; ++i) per_constraint(first[i]);
+                   });
+    }
   }
   for (int32_t i = offsets[k_contact_colour_count]; i < offsets[k_contact_colour_count + 1]; ++i) {
     per_constraint(constraints[i]);
   }
-}
-
-/// Calls per_constraint(cc) for every constraint, in parallel blocks (for
-/// loops whose work writes only the constraint itself or its own contact).
-template <typename PerConstraint>
-void for_each_constraint(StepContext* context, const char* stage, PerConstraint&& per_constraint) {
-  ContactConstraint* constraints = context->constraints;
-  parallel_for(context->tasks, stage, context->constraint_count, k_constraint_block,
-               [constraints, &per_constraint](int32_t begin, int32_t end) {
-                 for (int32_t i = begin; i < end; ++i) per_constraint(constraints[i]);
-               });
 }
 
 /// Loads a constraint's body: the solver state, or a zero-velocity dummy at
@@ -206,6 +225,75 @@ inline Q32 dot(Vec2 a, Vec2 b) { return sum2(a.x, b.x, a.y, b.y); }
 /// v rotated by q, each component rounded once (vec2.h's rotate).
 inline Vec2 rotate(Rot q, Vec2 v) { return {sum2(q.c, v.x, neg(q.s), v.y), sum2(q.s, v.x, q.c, v.y)}; }
 }  // namespace in_range
+
+/// The arithmetic of solve_constraint and warm start, two ways. SaturatingOps: the in_range
+/// helpers (the same bits in every build, saturating where the checked
+/// operators do). WrappingOps (below): the same products and roundings with
+/// no saturation test at all, plus a conservative witness that tells
+/// afterwards whether any operation might have saturated.
+struct SaturatingOps {
+  static Q32 mul(Q32 a, Q32 b) { return in_range::mul(a, b); }
+  static Q32 add(Q32 a, Q32 b) { return in_range::add(a, b); }
+  static Q32 sub(Q32 a, Q32 b) { return in_range::sub(a, b); }
+  static Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return in_range::sum2(a, b, c, d); }
+  static Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return in_range::sum4(a, b, c, d, e, f, g, h);
+  }
+  static void vet(Q32) {}
+  static bool clean() { return true; }
+};
+
+#if TANDEM_FAST_MATH_UNCHECKED && !TANDEM_FIXED_CHECKS
+#define TANDEM_CONTACT_WRAP_FIRST 1
+/// Wrapping arithmetic with a saturation witness (release builds with a
+/// native 128-bit type and no fault reports). Each rounding is fast::
+/// round_shift's in-range formula without its test; each add/sub wraps.
+/// What it records, branch-free (an OR per operation):
+///   wide   |= hi + 2^29 for each rounded 128-bit sum p (hi = p >> 64):
+///          no bit ≥ 30 set ⇔ −2^93 ≤ p < 2^93, so the result is exact
+///          round-to-nearest, |result| ≤ 2^61, and far from the
+///          saturation threshold 2^95 − 2^31;
+///   narrow |= r + 2^62 for each add/sub result r and each vetted operand:
+///          bit 63 clear ⇔ −2^62 ≤ r < 2^62.
+/// The proof that clean() means "the same bits as SaturatingOps": every
+/// add/sub operand is a vetted input, a rounded result (|x| ≤ 2^61), an
+/// earlier add/sub result (both: −2^62 ≤ x < 2^62) or a min/max/clamp of
+/// those, so the exact sum lies in [−2^63, 2^63): no wrap; its one value
+/// that saturates, the raw minimum −2^63, fails the result test. So every
+/// add/sub with a clear witness is one where fixed.h's operator+/− does not
+/// saturate (neg(x) = 0 − x
+/// needs no vetted operand: its only saturating input, the raw minimum,
+/// wraps to itself and is caught by the result test). Every rounding with
+/// a clear witness is below the saturation threshold. A set witness may be
+/// a false alarm (it is conservative); the caller then discards the result
+/// and runs SaturatingOps.
+struct WrappingOps {
+  uint64_t wide = 0;
+  uint64_t narrow = 0;
+  Q32 round(fast::u128 sum) {
+    const uint64_t hi = static_cast<uint64_t>(sum >> 64);
+    wide |= hi + (uint64_t{1} << 29);
+    return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(sum), hi));
+  }
+  Q32 wrapped(uint64_t r) {
+    narrow |= r + (uint64_t{1} << 62);
+    return Q32::from_raw(static_cast<int64_t>(r));
+  }
+  Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
+  Q32 add(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)); }
+  Q32 sub(Q32 a, Q32 b) { return wrapped(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)); }
+  Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
+  Q32 sum4(Q32 a, Q32 b, Q32 c, Q32 d, Q32 e, Q32 f, Q32 g, Q32 h) {
+    return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw) + fast::product(e.raw, f.raw) +
+                 fast::product(g.raw, h.raw));
+  }
+  /// An input used as an add/sub operand: must satisfy |x| < 2^62.
+  void vet(Q32 x) { narrow |= static_cast<uint64_t>(x.raw) + (uint64_t{1} << 62); }
+  bool clean() const { return ((wide >> 30) | (narrow >> 63)) == 0; }
+};
+#else
+#define TANDEM_CONTACT_WRAP_FIRST 0
+#endif
 
 /// The relative velocity of the contact point along a direction d (the
 /// normal or the tangent): (v_B − v_A)·d + ω_B (r_B × d) − ω_A (r_A × d),
@@ -406,55 +494,427 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     }
   }
   arena_free(arena, colour_of);
+  pack_contact_lanes(world, context);
 }
 
-void record_contact_approach(StepContext* context) {
-  BodyState* states = context->states;
-  for_each_constraint(context, "record_approach", [states](ContactConstraint& cc) {
-    BodyState dummy{};
-    const BodyState* a = body_state(states, cc.solver_a, &dummy);
-    const BodyState* b = body_state(states, cc.solver_b, &dummy);
-    for (int32_t j = 0; j < cc.point_count; ++j) {
-      ContactConstraintPoint& cp = cc.points[j];
-      cp.approach_velocity = relative_velocity(b->linear_velocity - a->linear_velocity, cc.normal, b->angular_velocity,
-                                               cp.rn_b, a->angular_velocity, cp.rn_a);
-    }
-  });
+ContactSolverPath contact_solver_path() {
+  return __atomic_load_n(&g_contact_solver_path, __ATOMIC_RELAXED) != 0 ? ContactSolverPath::lanes
+                                                                         : ContactSolverPath::scalar;
 }
 
-void warm_start_contacts(StepContext* context) {
-  BodyState* states = context->states;
-  const int32_t previous = context->sub_step_index - 1;
-  for_each_by_colour(context, "warm_start", [states, previous](ContactConstraint& cc) {
-    BodyState dummy_a{}, dummy_b{};
-    BodyState* a = body_state(states, cc.solver_a, &dummy_a);
-    BodyState* b = body_state(states, cc.solver_b, &dummy_b);
-    const Vec2 n = cc.normal, t = right_perp(n);
-    Vec2 va = a->linear_velocity, vb = b->linear_velocity;
-    Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-    for (int32_t j = 0; j < cc.point_count; ++j) {
-      ContactConstraintPoint& cp = cc.points[j];
-      if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
-      using namespace in_range;
-      const Vec2 p{sum2(cp.normal_impulse, n.x, cp.tangent_impulse, t.x),
-                   sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
-      const Q32 spin_a = sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
-      const Q32 spin_b = sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
-      va = {sub(va.x, mul(cc.inv_mass_a, p.x)), sub(va.y, mul(cc.inv_mass_a, p.y))};
-      wa = sub(wa, spin_a);
-      vb = {add(vb.x, mul(cc.inv_mass_b, p.x)), add(vb.y, mul(cc.inv_mass_b, p.y))};
-      wb = add(wb, spin_b);
+void set_contact_solver_path(ContactSolverPath path) {
+  __atomic_store_n(&g_contact_solver_path, path == ContactSolverPath::lanes ? 1 : 0, __ATOMIC_RELAXED);
+}
+
+void pack_contact_lanes(World* world, StepContext* context) {
+  context->lanes = nullptr;
+  for (int32_t& offset : context->lane_offsets) offset = 0;
+  if (contact_solver_path() != ContactSolverPath::lanes) return;
+  const int32_t* offsets = context->colour_offsets;
+  int32_t blocks = 0;
+  for (int32_t k = 0; k < k_contact_colour_count; ++k) {
+    context->lane_offsets[k] = blocks;
+    blocks += (offsets[k + 1] - offsets[k] + k_contact_lanes - 1) / k_contact_lanes;
+  }
+  context->lane_offsets[k_contact_colour_count] = blocks;
+  ContactLanes* lanes = arena_allocate_array<ContactLanes>(&world->arena, blocks, "contact_lanes");
+  for (int32_t b = 0; b < blocks; ++b) {
+    ContactLanes& cl = lanes[b];
+    cl = ContactLanes{};
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      cl.solver_a[l] = k_null_index;
+      cl.solver_b[l] = k_null_index;
+      cl.contact_index[l] = -1;
+      for (ContactLanePoint& p : cl.points) {
+        p.bounce_sub_step[l] = -1;
+        p.active_sub_step[l] = -1;
+      }
     }
-    store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
-    store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
-  });
+  }
+  for (int32_t k = 0; k < k_contact_colour_count; ++k) {
+    for (int32_t i = offsets[k]; i < offsets[k + 1]; ++i) {
+      const ContactConstraint& cc = context->constraints[i];
+      ContactLanes& cl = lanes[context->lane_offsets[k] + (i - offsets[k]) / k_contact_lanes];
+      const int32_t l = (i - offsets[k]) % k_contact_lanes;
+      cl.solver_a[l] = cc.solver_a;
+      cl.solver_b[l] = cc.solver_b;
+      cl.contact_index[l] = cc.contact_index;
+      cl.movable_a[l] = cc.inv_mass_a != Q32::zero() || cc.inv_inertia_a != Q32::zero() ? 1 : 0;
+      cl.movable_b[l] = cc.inv_mass_b != Q32::zero() || cc.inv_inertia_b != Q32::zero() ? 1 : 0;
+      cl.normal_x[l] = cc.normal.x;
+      cl.normal_y[l] = cc.normal.y;
+      cl.inv_mass_a[l] = cc.inv_mass_a;
+      cl.inv_mass_b[l] = cc.inv_mass_b;
+      cl.friction[l] = cc.friction;
+      cl.restitution[l] = cc.restitution;
+      cl.kick[l] = cc.kick;
+      cl.bias_rate[l] = cc.softness.bias_rate;
+      cl.impulse_scale[l] = cc.softness.impulse_scale;
+      for (int32_t j = 0; j < cc.point_count; ++j) {
+        const ContactConstraintPoint& cp = cc.points[j];
+        ContactLanePoint& p = cl.points[j];
+        p.rn_a[l] = cp.rn_a;
+        p.rn_b[l] = cp.rn_b;
+        p.rt_a[l] = cp.rt_a;
+        p.rt_b[l] = cp.rt_b;
+        p.angular_n_a[l] = cp.angular_n_a;
+        p.angular_n_b[l] = cp.angular_n_b;
+        p.angular_t_a[l] = cp.angular_t_a;
+        p.angular_t_b[l] = cp.angular_t_b;
+        p.local_a_x[l] = cp.local_a.x;
+        p.local_a_y[l] = cp.local_a.y;
+        p.local_b_x[l] = cp.local_b.x;
+        p.local_b_y[l] = cp.local_b.y;
+        p.adjusted_separation[l] = cp.adjusted_separation;
+        p.normal_impulse[l] = cp.normal_impulse;
+        p.tangent_impulse[l] = cp.tangent_impulse;
+        p.normal_mass[l] = cp.normal_mass;
+        p.soft_normal_mass[l] = cp.soft_normal_mass;
+        p.tangent_mass[l] = cp.tangent_mass;
+        p.approach_velocity[l] = cp.approach_velocity;
+        p.bounce_velocity[l] = cp.bounce_velocity;
+        p.bounce_sub_step[l] = cp.bounce_sub_step;
+        p.active_sub_step[l] = cp.active_sub_step;
+        p.present[l] = 1;
+      }
+    }
+  }
+  context->lanes = lanes;
 }
 
 namespace {
 
-/// One pass over one constraint. use_bias: the biased solve (latches
-/// bounces, soft push); otherwise a relax pass.
-void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+// ---- Lane kernels (contact_lanes.h). Each is the scalar function of the
+// same name below (…_constraint) with the constraint index turned into a
+// lane index: the same in_range operations on the same operands in the same
+// order for every lane, and the scalar path's branches turned into per-lane
+// selects. A lane whose point is missing, empty or skipped computes its
+// values anyway and keeps its old state (the select), so no lane ever
+// changes what the scalar path would leave alone.
+
+/// The velocities of a block's bodies, gathered before and scattered after
+/// a kernel (a missing body reads a zero-velocity dummy and is never
+/// written).
+struct LaneVelocities {
+  Vec2 va[k_contact_lanes];
+  Q32 wa[k_contact_lanes];
+  Vec2 vb[k_contact_lanes];
+  Q32 wb[k_contact_lanes];
+};
+
+inline const BodyState& lane_body(const BodyState* states, int32_t index, const BodyState& dummy) {
+  return index >= 0 ? states[index] : dummy;
+}
+
+inline void gather_velocities(const ContactLanes& cl, const BodyState* states, LaneVelocities* out) {
+  const BodyState dummy{};
+  for (int32_t l = 0; l < k_contact_lanes; ++l) {
+    const BodyState& a = lane_body(states, cl.solver_a[l], dummy);
+    const BodyState& b = lane_body(states, cl.solver_b[l], dummy);
+    out->va[l] = a.linear_velocity;
+    out->wa[l] = a.angular_velocity;
+    out->vb[l] = b.linear_velocity;
+    out->wb[l] = b.angular_velocity;
+  }
+}
+
+/// Writes back the movable bodies (store_velocity's rule).
+inline void scatter_velocities(const ContactLanes& cl, BodyState* states, const LaneVelocities& v) {
+  for (int32_t l = 0; l < k_contact_lanes; ++l) {
+    if (cl.solver_a[l] >= 0 && cl.movable_a[l] != 0) {
+      states[cl.solver_a[l]].linear_velocity = v.va[l];
+      states[cl.solver_a[l]].angular_velocity = v.wa[l];
+    }
+    if (cl.solver_b[l] >= 0 && cl.movable_b[l] != 0) {
+      states[cl.solver_b[l]].linear_velocity = v.vb[l];
+      states[cl.solver_b[l]].angular_velocity = v.wb[l];
+    }
+  }
+}
+
+/// cond ? if_true : if_false, a per-lane select (compilers emit cmov/blend).
+template <typename T>
+inline T pick(bool cond, T if_true, T if_false) {
+  return cond ? if_true : if_false;
+}
+
+/// Applies impulse along d in lane l, or keeps the lane's velocities when
+/// `skip` (apply_impulse's operations).
+inline void apply_lane_impulse(LaneVelocities* v, int32_t l, bool skip, Q32 impulse, Vec2 d, Q32 inv_mass_a,
+                               Q32 angular_a, Q32 inv_mass_b, Q32 angular_b) {
+  Vec2 va = v->va[l], vb = v->vb[l];
+  Q32 wa = v->wa[l], wb = v->wb[l];
+  apply_impulse(impulse, d, inv_mass_a, angular_a, inv_mass_b, angular_b, &va, &wa, &vb, &wb);
+  v->va[l] = {pick(skip, v->va[l].x, va.x), pick(skip, v->va[l].y, va.y)};
+  v->wa[l] = pick(skip, v->wa[l], wa);
+  v->vb[l] = {pick(skip, v->vb[l].x, vb.x), pick(skip, v->vb[l].y, vb.y)};
+  v->wb[l] = pick(skip, v->wb[l], wb);
+}
+
+void record_approach_lanes(ContactLanes& cl, BodyState* states) {
+  const BodyState dummy{};
+  for (int32_t l = 0; l < k_contact_lanes; ++l) {
+    const BodyState& a = lane_body(states, cl.solver_a[l], dummy);
+    const BodyState& b = lane_body(states, cl.solver_b[l], dummy);
+    const Vec2 n{cl.normal_x[l], cl.normal_y[l]};
+    for (ContactLanePoint& p : cl.points) {
+      p.approach_velocity[l] = relative_velocity(b.linear_velocity - a.linear_velocity, n, b.angular_velocity,
+                                                 p.rn_b[l], a.angular_velocity, p.rn_a[l]);
+    }
+  }
+}
+
+void warm_start_lanes(ContactLanes& cl, BodyState* states, int32_t previous) {
+  using namespace in_range;
+  LaneVelocities v;
+  gather_velocities(cl, states, &v);
+  for (ContactLanePoint& p : cl.points) {
+    int32_t any = 0;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) any |= p.present[l];
+    if (any == 0) continue;  // no lane has this point
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      const bool skip = p.present[l] == 0;
+      const Vec2 n{cl.normal_x[l], cl.normal_y[l]}, t = right_perp(n);
+      const bool restart = p.bounce_sub_step[l] >= 0 && p.bounce_sub_step[l] == previous;
+      const Q32 ni = pick(restart, Q32::zero(), p.normal_impulse[l]);
+      const Q32 ti = p.tangent_impulse[l];
+      p.normal_impulse[l] = pick(skip, p.normal_impulse[l], ni);
+      const Vec2 impulse{sum2(ni, n.x, ti, t.x), sum2(ni, n.y, ti, t.y)};
+      const Q32 spin_a = sum2(ni, p.angular_n_a[l], ti, p.angular_t_a[l]);
+      const Q32 spin_b = sum2(ni, p.angular_n_b[l], ti, p.angular_t_b[l]);
+      const Q32 ma = cl.inv_mass_a[l], mb = cl.inv_mass_b[l];
+      const Vec2 va{sub(v.va[l].x, mul(ma, impulse.x)), sub(v.va[l].y, mul(ma, impulse.y))};
+      const Q32 wa = sub(v.wa[l], spin_a);
+      const Vec2 vb{add(v.vb[l].x, mul(mb, impulse.x)), add(v.vb[l].y, mul(mb, impulse.y))};
+      const Q32 wb = add(v.wb[l], spin_b);
+      v.va[l] = {pick(skip, v.va[l].x, va.x), pick(skip, v.va[l].y, va.y)};
+      v.wa[l] = pick(skip, v.wa[l], wa);
+      v.vb[l] = {pick(skip, v.vb[l].x, vb.x), pick(skip, v.vb[l].y, vb.y)};
+      v.wb[l] = pick(skip, v.wb[l], wb);
+    }
+  }
+  scatter_velocities(cl, states, v);
+}
+
+/// solve_constraint over the lanes of a block. enabled (may be null: all
+/// lanes): per lane, 0 leaves the lane's constraint untouched (the bounce
+/// relax passes solve only the constraints of marked bodies).
+template <bool use_bias>
+void solve_lanes(ContactLanes& cl, StepContext* context, const int32_t* enabled) {
+  using namespace in_range;
+  BodyState* states = context->states;
+  const int32_t k = context->sub_step_index;
+  const Q32 h = context->h;
+  const Q32 inv_h = context->inv_h;
+  const Q32 min_push_bias = -context->max_push_speed;
+  const Q32 min_approach = -context->restitution_threshold;
+  LaneVelocities v;
+  Vec2 dc[k_contact_lanes];
+  Rot rot_a[k_contact_lanes], rot_b[k_contact_lanes];
+  {
+    const BodyState dummy{};
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      const BodyState& a = lane_body(states, cl.solver_a[l], dummy);
+      const BodyState& b = lane_body(states, cl.solver_b[l], dummy);
+      v.va[l] = a.linear_velocity;
+      v.wa[l] = a.angular_velocity;
+      v.vb[l] = b.linear_velocity;
+      v.wb[l] = b.angular_velocity;
+      dc[l] = sub(b.center, a.center);
+      rot_a[l] = a.rotation;
+      rot_b[l] = b.rotation;
+    }
+  }
+  bool skip[2][k_contact_lanes];
+
+  for (int32_t j = 0; j < 2; ++j) {
+    ContactLanePoint& p = cl.points[j];
+    bool live[k_contact_lanes];
+    bool any_live = false;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      live[l] = p.present[l] != 0 && (enabled == nullptr || enabled[l] != 0);
+      any_live |= live[l];
+      skip[j][l] = true;
+    }
+    if (!any_live) continue;  // what the scalar loop never visits (no point, or not enabled)
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      const Vec2 n{cl.normal_x[l], cl.normal_y[l]};
+      const Vec2 d = add(dc[l], sub(in_range::rotate(rot_b[l], Vec2{p.local_b_x[l], p.local_b_y[l]}),
+                                    in_range::rotate(rot_a[l], Vec2{p.local_a_x[l], p.local_a_y[l]})));
+      const Q32 s = add(in_range::dot(d, n), p.adjusted_separation[l]);
+      const bool touching = s <= Q32::zero();
+      bool active = touching;
+      if constexpr (use_bias) {
+        // The relax pass never reads `active`; the scalar path computes it
+        // there but has no use for it.
+        active = touching || add(s, mul(h, add(p.approach_velocity[l], cl.kick[l]))) < Q32::zero();
+        const bool act = live[l] && active;
+        p.active_sub_step[l] = pick(act, k, p.active_sub_step[l]);
+        const bool latch = act && cl.restitution[l] > Q32::zero() && p.approach_velocity[l] < min_approach &&
+                           p.bounce_sub_step[l] != k;
+        if (latch) [[unlikely]] {
+          p.bounce_sub_step[l] = k;
+          p.bounce_velocity[l] = -(cl.restitution[l] * p.approach_velocity[l]);
+          if (cl.solver_a[l] >= 0) mark_bounce(&context->bounce_marks[cl.solver_a[l]], k);
+          if (cl.solver_b[l] >= 0) mark_bounce(&context->bounce_marks[cl.solver_b[l]], k);
+          atomic_store_relaxed(&context->bounced_this_sub_step, true);
+        }
+      }
+      const bool bouncing = p.bounce_sub_step[l] == k;
+      const bool skipped =
+          !live[l] || (!use_bias && !bouncing &&
+                       (!touching || (p.active_sub_step[l] != k && p.normal_impulse[l] == Q32::zero())));
+      skip[j][l] = skipped;
+      // The scalar chain: bouncing → rigid, target speed; speculative →
+      // rigid, bias s·(1/h); touching in the biased solve → soft, bias
+      // max(rate·s, −push); touching in relax → rigid, no bias. Both
+      // products are one Q32 multiplication by s, so one multiplication
+      // with the factor selected gives the same bits.
+      const Q32 vn = relative_velocity(sub(v.vb[l], v.va[l]), n, v.wb[l], p.rn_b[l], v.wa[l], p.rn_a[l]);
+      Q32 impulse;
+      if constexpr (use_bias) {
+        const bool soft = touching && !bouncing;
+        const Q32 scaled = (touching ? cl.bias_rate[l] : inv_h) * s;
+        const Q32 bias = bouncing ? -p.bounce_velocity[l] : (touching ? max(scaled, min_push_bias) : scaled);
+        const Q32 mass = soft ? p.soft_normal_mass[l] : p.normal_mass[l];
+        const Q32 impulse_scale = soft ? cl.impulse_scale[l] : Q32::zero();
+        impulse = sub(neg(mul(mass, add(vn, bias))), mul(impulse_scale, p.normal_impulse[l]));
+        const bool gate = !bouncing && !touching && !active;
+        impulse = pick(gate, min(impulse, Q32::zero()), impulse);
+      } else {
+        // Relax: impulse scale 0, so the scalar path's "− 0·λ" is exact
+        // (neg never returns the one value, INT64_MIN, that "− 0" changes);
+        // speculative points are skipped, so the bias is the bounce
+        // target or 0.
+        const Q32 bias = bouncing ? -p.bounce_velocity[l] : Q32::zero();
+        impulse = neg(mul(p.normal_mass[l], add(vn, bias)));
+      }
+      const Q32 accumulated = max(add(p.normal_impulse[l], impulse), Q32::zero());
+      impulse = sub(accumulated, p.normal_impulse[l]);
+      p.normal_impulse[l] = pick(skipped, p.normal_impulse[l], accumulated);
+      apply_lane_impulse(&v, l, skipped, impulse, n, cl.inv_mass_a[l], p.angular_n_a[l], cl.inv_mass_b[l],
+                         p.angular_n_b[l]);
+    }
+  }
+
+  for (int32_t j = 0; j < 2; ++j) {
+    ContactLanePoint& p = cl.points[j];
+    bool any = false;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) any |= !skip[j][l];
+    if (!any) continue;
+    for (int32_t l = 0; l < k_contact_lanes; ++l) {
+      const Vec2 n{cl.normal_x[l], cl.normal_y[l]}, t = right_perp(n);
+      const bool skipped = skip[j][l];
+      const Q32 vt = relative_velocity(sub(v.vb[l], v.va[l]), t, v.wb[l], p.rt_b[l], v.wa[l], p.rt_a[l]);
+      const Q32 max_friction = mul(cl.friction[l], p.normal_impulse[l]);
+      const Q32 accumulated = clamp(sub(p.tangent_impulse[l], mul(p.tangent_mass[l], vt)), neg(max_friction),
+                                    max_friction);
+      const Q32 impulse = sub(accumulated, p.tangent_impulse[l]);
+      p.tangent_impulse[l] = pick(skipped, p.tangent_impulse[l], accumulated);
+      apply_lane_impulse(&v, l, skipped, impulse, t, cl.inv_mass_a[l], p.angular_t_a[l], cl.inv_mass_b[l],
+                         p.angular_t_b[l]);
+    }
+  }
+
+  scatter_velocities(cl, states, v);
+}
+
+}  // namespace
+
+namespace {
+
+/// Each point's relative normal velocity at the start of a sub-step.
+void record_approach_constraint(ContactConstraint& cc, BodyState* states) {
+  BodyState dummy{};
+  const BodyState* a = body_state(states, cc.solver_a, &dummy);
+  const BodyState* b = body_state(states, cc.solver_b, &dummy);
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    cp.approach_velocity = relative_velocity(b->linear_velocity - a->linear_velocity, cc.normal, b->angular_velocity,
+                                             cp.rn_b, a->angular_velocity, cp.rn_a);
+  }
+}
+
+}  // namespace
+
+void record_contact_approach(StepContext* context) {
+  BodyState* states = context->states;
+  if (context->lanes != nullptr) {
+    parallel_for(context->tasks, "record_approach", context->lane_offsets[k_contact_colour_count],
+                 k_constraint_block / k_contact_lanes, [context, states](int32_t begin, int32_t end) {
+                   for (int32_t i = begin; i < end; ++i) record_approach_lanes(context->lanes[i], states);
+                 });
+  }
+  const int32_t first = context->lanes != nullptr ? context->colour_offsets[k_contact_colour_count] : 0;
+  ContactConstraint* constraints = context->constraints + first;
+  parallel_for(context->tasks, "record_approach", context->constraint_count - first, k_constraint_block,
+               [constraints, states](int32_t begin, int32_t end) {
+                 for (int32_t i = begin; i < end; ++i) record_approach_constraint(constraints[i], states);
+               });
+}
+
+namespace {
+
+/// Warm start of one constraint with the arithmetic of Ops: the bodies are
+/// written only if ops.clean() holds at the end; returns whether they were.
+/// (Zeroing a bounced point's impulse does not depend on the arithmetic.)
+template <typename Ops>
+bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_t previous, Ops& o) {
+  BodyState dummy_a{}, dummy_b{};
+  BodyState* a = body_state(states, cc.solver_a, &dummy_a);
+  BodyState* b = body_state(states, cc.solver_b, &dummy_b);
+  const Vec2 n = cc.normal, t = right_perp(n);
+  Vec2 va = a->linear_velocity, vb = b->linear_velocity;
+  Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+  o.vet(va.x);
+  o.vet(va.y);
+  o.vet(vb.x);
+  o.vet(vb.y);
+  o.vet(wa);
+  o.vet(wb);
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
+    const Vec2 p{o.sum2(cp.normal_impulse, n.x, cp.tangent_impulse, t.x),
+                 o.sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
+    const Q32 spin_a = o.sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
+    const Q32 spin_b = o.sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
+    va = {o.sub(va.x, o.mul(cc.inv_mass_a, p.x)), o.sub(va.y, o.mul(cc.inv_mass_a, p.y))};
+    wa = o.sub(wa, spin_a);
+    vb = {o.add(vb.x, o.mul(cc.inv_mass_b, p.x)), o.add(vb.y, o.mul(cc.inv_mass_b, p.y))};
+    wb = o.add(wb, spin_b);
+  }
+  if (!o.clean()) return false;
+  store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
+  store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
+  return true;
+}
+
+}  // namespace
+
+void warm_start_contacts(StepContext* context) {
+  BodyState* states = context->states;
+  const int32_t previous = context->sub_step_index - 1;
+  for_each_by_colour(
+      context, "warm_start", [states, previous](ContactLanes& cl) { warm_start_lanes(cl, states, previous); },
+      [states, previous](ContactConstraint& cc) {
+#if TANDEM_CONTACT_WRAP_FIRST
+        WrappingOps wrapping;
+        if (warm_start_constraint_with(cc, states, previous, wrapping)) return;
+#endif
+        SaturatingOps saturating;
+        warm_start_constraint_with(cc, states, previous, saturating);
+      });
+}
+
+namespace {
+
+/// One pass over one constraint with the arithmetic of Ops. use_bias: the
+/// biased solve (latches bounces, soft push); otherwise a relax pass.
+/// Nothing is written (constraint points, bodies, bounce marks) unless
+/// ops.clean() holds at the end; returns whether it wrote.
+template <typename Ops>
+bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use_bias, Ops& o) {
   BodyState dummy_a{}, dummy_b{};
   BodyState* a = body_state(context->states, cc.solver_a, &dummy_a);
   BodyState* b = body_state(context->states, cc.solver_b, &dummy_b);
@@ -464,34 +924,67 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
   const Q32 ma = cc.inv_mass_a, mb = cc.inv_mass_b;
   Vec2 va = a->linear_velocity, vb = b->linear_velocity;
   Q32 wa = a->angular_velocity, wb = b->angular_velocity;
-  const Vec2 dc = in_range::sub(b->center, a->center);
+  o.vet(va.x);
+  o.vet(va.y);
+  o.vet(vb.x);
+  o.vet(vb.y);
+  o.vet(wa);
+  o.vet(wb);
+  o.vet(a->center.x);
+  o.vet(a->center.y);
+  o.vet(b->center.x);
+  o.vet(b->center.y);
+  o.vet(cc.kick);
+  const Vec2 dc = {o.sub(b->center.x, a->center.x), o.sub(b->center.y, a->center.y)};
+  const auto rotate = [&o](Rot q, Vec2 v) {
+    return Vec2{o.sum2(q.c, v.x, o.sub(Q32::zero(), q.s), v.y), o.sum2(q.s, v.x, q.c, v.y)};
+  };
+  const auto apply = [&](Q32 impulse, Vec2 d, Q32 angular_a, Q32 angular_b) {
+    const Q32 ka = o.mul(ma, impulse), kb = o.mul(mb, impulse);
+    va = {o.sub(va.x, o.mul(ka, d.x)), o.sub(va.y, o.mul(ka, d.y))};
+    wa = o.sub(wa, o.mul(impulse, angular_a));
+    vb = {o.add(vb.x, o.mul(kb, d.x)), o.add(vb.y, o.mul(kb, d.y))};
+    wb = o.add(wb, o.mul(impulse, angular_b));
+  };
+  // relative_velocity's formula: sum4 of dv·d and ω_B (r_B × d) − ω_A (r_A × d).
+  const auto relative = [&](Vec2 d, Q32 rd_b, Q32 rd_a) {
+    return o.sum4(o.sub(vb.x, va.x), d.x, o.sub(vb.y, va.y), d.y, wb, rd_b, o.sub(Q32::zero(), wa), rd_a);
+  };
+  // The points' mutable state, written back only at the end.
+  struct PointState {
+    Q32 normal_impulse, tangent_impulse, bounce_velocity;
+    int32_t active_sub_step, bounce_sub_step;
+  };
+  PointState ps[2];
   bool skip[2] = {false, false};
+  bool bounced = false;
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
-    ContactConstraintPoint& cp = cc.points[j];
-    const Vec2 d = in_range::add(dc, in_range::sub(in_range::rotate(b->rotation, cp.local_b),
-                                                    in_range::rotate(a->rotation, cp.local_a)));
-    const Q32 s = in_range::add(in_range::dot(d, n), cp.adjusted_separation);
+    const ContactConstraintPoint& cp = cc.points[j];
+    PointState& p = ps[j];
+    p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.active_sub_step, cp.bounce_sub_step};
+    o.vet(cp.adjusted_separation);
+    o.vet(cp.approach_velocity);
+    o.vet(p.normal_impulse);
+    o.vet(p.tangent_impulse);
+    const Vec2 rb = rotate(b->rotation, cp.local_b), ra = rotate(a->rotation, cp.local_a);
+    const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
+    const Q32 s = o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
     const bool touching = s <= Q32::zero();
-    const bool active =
-        touching ||
-        in_range::add(s, in_range::mul(h, in_range::add(cp.approach_velocity, cc.kick))) < Q32::zero();
+    const bool active = touching || o.add(s, o.mul(h, o.add(cp.approach_velocity, cc.kick))) < Q32::zero();
     if (use_bias) {
       if (active) {
-        cp.active_sub_step = k;
+        p.active_sub_step = k;
         if (cc.restitution > Q32::zero() && cp.approach_velocity < -context->restitution_threshold &&
-            cp.bounce_sub_step != k) {
-          cp.bounce_sub_step = k;
-          cp.bounce_velocity = -(cc.restitution * cp.approach_velocity);
-          if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
-          if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
-          atomic_store_relaxed(&context->bounced_this_sub_step, true);
+            p.bounce_sub_step != k) {
+          p.bounce_sub_step = k;
+          p.bounce_velocity = -(cc.restitution * cp.approach_velocity);
+          bounced = true;
         }
       }
     }
-    const bool bouncing = cp.bounce_sub_step == k;
-    if (!use_bias && !bouncing &&
-        (!touching || (cp.active_sub_step != k && cp.normal_impulse == Q32::zero()))) {
+    const bool bouncing = p.bounce_sub_step == k;
+    if (!use_bias && !bouncing && (!touching || (p.active_sub_step != k && p.normal_impulse == Q32::zero()))) {
       skip[j] = true;  // relax gate: speculative, or idle this sub-step
       continue;
     }
@@ -499,7 +992,7 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
     Q32 mass = cp.normal_mass;
     Q32 impulse_scale = Q32::zero();
     if (bouncing) {
-      bias = -cp.bounce_velocity;
+      bias = -p.bounce_velocity;
     } else if (!touching) {
       bias = s * context->inv_h;  // speculative: only stop it reaching the surface
     } else if (use_bias) {
@@ -507,64 +1000,143 @@ void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias
       mass = cp.soft_normal_mass;
       impulse_scale = cc.softness.impulse_scale;
     }
-    const Q32 vn = relative_velocity(in_range::sub(vb, va), n, wb, cp.rn_b, wa, cp.rn_a);
-    Q32 impulse = in_range::sub(in_range::neg(in_range::mul(mass, in_range::add(vn, bias))),
-                                in_range::mul(impulse_scale, cp.normal_impulse));
+    o.vet(bias);
+    const Q32 vn = relative(n, cp.rn_b, cp.rn_a);
+    Q32 impulse =
+        o.sub(o.sub(Q32::zero(), o.mul(mass, o.add(vn, bias))), o.mul(impulse_scale, p.normal_impulse));
     if (use_bias && !bouncing && !touching && !active) impulse = min(impulse, Q32::zero());
-    const Q32 accumulated = max(in_range::add(cp.normal_impulse, impulse), Q32::zero());
-    impulse = in_range::sub(accumulated, cp.normal_impulse);
-    cp.normal_impulse = accumulated;
-    apply_impulse(impulse, n, ma, cp.angular_n_a, mb, cp.angular_n_b, &va, &wa, &vb, &wb);
+    const Q32 accumulated = max(o.add(p.normal_impulse, impulse), Q32::zero());
+    impulse = o.sub(accumulated, p.normal_impulse);
+    p.normal_impulse = accumulated;
+    apply(impulse, n, cp.angular_n_a, cp.angular_n_b);
   }
 
   for (int32_t j = 0; j < cc.point_count; ++j) {
     if (skip[j]) continue;
-    ContactConstraintPoint& cp = cc.points[j];
-    const Q32 vt = relative_velocity(in_range::sub(vb, va), t, wb, cp.rt_b, wa, cp.rt_a);
-    const Q32 max_friction = in_range::mul(cc.friction, cp.normal_impulse);
-    const Q32 accumulated = clamp(in_range::sub(cp.tangent_impulse, in_range::mul(cp.tangent_mass, vt)),
-                                  in_range::neg(max_friction), max_friction);
-    const Q32 impulse = in_range::sub(accumulated, cp.tangent_impulse);
-    cp.tangent_impulse = accumulated;
-    apply_impulse(impulse, t, ma, cp.angular_t_a, mb, cp.angular_t_b, &va, &wa, &vb, &wb);
+    const ContactConstraintPoint& cp = cc.points[j];
+    PointState& p = ps[j];
+    const Q32 vt = relative(t, cp.rt_b, cp.rt_a);
+    const Q32 max_friction = o.mul(cc.friction, p.normal_impulse);
+    const Q32 accumulated = clamp(o.sub(p.tangent_impulse, o.mul(cp.tangent_mass, vt)),
+                                  o.sub(Q32::zero(), max_friction), max_friction);
+    const Q32 impulse = o.sub(accumulated, p.tangent_impulse);
+    p.tangent_impulse = accumulated;
+    apply(impulse, t, cp.angular_t_a, cp.angular_t_b);
   }
 
+  if (!o.clean()) return false;
+  for (int32_t j = 0; j < cc.point_count; ++j) {
+    ContactConstraintPoint& cp = cc.points[j];
+    const PointState& p = ps[j];
+    cp.normal_impulse = p.normal_impulse;
+    cp.tangent_impulse = p.tangent_impulse;
+    cp.bounce_velocity = p.bounce_velocity;
+    cp.active_sub_step = p.active_sub_step;
+    cp.bounce_sub_step = p.bounce_sub_step;
+  }
+  if (bounced) {
+    if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
+    if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
+    atomic_store_relaxed(&context->bounced_this_sub_step, true);
+  }
   store_velocity(a, va, wa, ma, cc.inv_inertia_a);
   store_velocity(b, vb, wb, mb, cc.inv_inertia_b);
+  return true;
+}
+
+/// One pass over one constraint (see solve_constraint_with). Release builds
+/// with a native 128-bit type first run the wrapping arithmetic and keep its
+/// result when its witness shows that nothing came near saturation (every
+/// ordinary contact); otherwise, and in every other build, the saturating
+/// arithmetic. Same bits either way.
+void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+#if TANDEM_CONTACT_WRAP_FIRST
+  WrappingOps wrapping;
+  if (solve_constraint_with(cc, context, use_bias, wrapping)) return;
+#endif
+  SaturatingOps saturating;
+  solve_constraint_with(cc, context, use_bias, saturating);
 }
 
 }  // namespace
 
 void solve_contacts(StepContext* context) {
   context->bounced_this_sub_step = false;
-  for_each_by_colour(context, "solve", [context](ContactConstraint& cc) { solve_constraint(cc, context, true); });
+  for_each_by_colour(
+      context, "solve", [context](ContactLanes& cl) { solve_lanes<true>(cl, context, nullptr); },
+      [context](ContactConstraint& cc) { solve_constraint(cc, context, true); });
 }
 
 void relax_contacts(StepContext* context) {
-  for_each_by_colour(context, "relax", [context](ContactConstraint& cc) { solve_constraint(cc, context, false); });
+  for_each_by_colour(
+      context, "relax", [context](ContactLanes& cl) { solve_lanes<false>(cl, context, nullptr); },
+      [context](ContactConstraint& cc) { solve_constraint(cc, context, false); });
   if (!context->bounced_this_sub_step) return;
   const int32_t k = context->sub_step_index;
   const int32_t* marks = context->bounce_marks;
   for (int32_t pass = 0; pass < 2; ++pass) {
-    for_each_by_colour(context, "relax_bounce", [context, marks, k](ContactConstraint& cc) {
-      const bool marked = (cc.solver_a >= 0 && marks[cc.solver_a] == k) || (cc.solver_b >= 0 && marks[cc.solver_b] == k);
-      if (marked) solve_constraint(cc, context, false);
-    });
+    for_each_by_colour(
+        context, "relax_bounce",
+        [context, marks, k](ContactLanes& cl) {
+          int32_t enabled[k_contact_lanes];
+          int32_t any = 0;
+          for (int32_t l = 0; l < k_contact_lanes; ++l) {
+            enabled[l] = (cl.solver_a[l] >= 0 && marks[cl.solver_a[l]] == k) ||
+                                 (cl.solver_b[l] >= 0 && marks[cl.solver_b[l]] == k)
+                             ? 1
+                             : 0;
+            any |= enabled[l];
+          }
+          if (any != 0) solve_lanes<false>(cl, context, enabled);
+        },
+        [context, marks, k](ContactConstraint& cc) {
+          const bool marked =
+              (cc.solver_a >= 0 && marks[cc.solver_a] == k) || (cc.solver_b >= 0 && marks[cc.solver_b] == k);
+          if (marked) solve_constraint(cc, context, false);
+        });
   }
 }
 
 void store_contact_impulses(World* world, StepContext* context) {
   const int32_t last = context->sub_step_count - 1;
   Contact* contacts = world->contacts.data();
-  for_each_constraint(context, "store_impulses", [contacts, last](const ContactConstraint& cc) {
-    Contact& c = contacts[cc.contact_index];
-    for (int32_t j = 0; j < cc.point_count; ++j) {
-      const ContactConstraintPoint& cp = cc.points[j];
-      c.normal_impulse[static_cast<size_t>(j)] = cp.bounce_sub_step == last ? Q32::zero() : cp.normal_impulse;
-      c.tangent_impulse[static_cast<size_t>(j)] = cp.tangent_impulse;
-    }
-  });
+  ContactLanes* lanes = context->lanes;
+  if (lanes != nullptr) {
+    parallel_for(context->tasks, "store_impulses", context->lane_offsets[k_contact_colour_count],
+                 k_constraint_block / k_contact_lanes, [lanes, contacts, last](int32_t begin, int32_t end) {
+                   for (int32_t i = begin; i < end; ++i) {
+                     const ContactLanes& cl = lanes[i];
+                     for (int32_t l = 0; l < k_contact_lanes; ++l) {
+                       if (cl.contact_index[l] < 0) continue;
+                       Contact& c = contacts[cl.contact_index[l]];
+                       for (int32_t j = 0; j < 2; ++j) {
+                         const ContactLanePoint& p = cl.points[j];
+                         if (p.present[l] == 0) continue;
+                         c.normal_impulse[static_cast<size_t>(j)] =
+                             p.bounce_sub_step[l] == last ? Q32::zero() : p.normal_impulse[l];
+                         c.tangent_impulse[static_cast<size_t>(j)] = p.tangent_impulse[l];
+                       }
+                     }
+                   }
+                 });
+  }
+  const int32_t first = lanes != nullptr ? context->colour_offsets[k_contact_colour_count] : 0;
+  ContactConstraint* constraints = context->constraints + first;
+  parallel_for(context->tasks, "store_impulses", context->constraint_count - first, k_constraint_block,
+               [constraints, contacts, last](int32_t begin, int32_t end) {
+                 for (int32_t i = begin; i < end; ++i) {
+                   const ContactConstraint& cc = constraints[i];
+                   Contact& c = contacts[cc.contact_index];
+                   for (int32_t j = 0; j < cc.point_count; ++j) {
+                     const ContactConstraintPoint& cp = cc.points[j];
+                     c.normal_impulse[static_cast<size_t>(j)] = cp.bounce_sub_step == last ? Q32::zero() : cp.normal_impulse;
+                     c.tangent_impulse[static_cast<size_t>(j)] = cp.tangent_impulse;
+                   }
+                 }
+               });
   Arena* arena = &world->arena;
+  if (lanes != nullptr) arena_free(arena, lanes);
+  context->lanes = nullptr;
   arena_free(arena, context->bounce_marks);
   arena_free(arena, context->constraints);
   context->bounce_marks = nullptr;

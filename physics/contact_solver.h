@@ -22,6 +22,21 @@ namespace tandem {
 
 struct World;
 struct StepContext;
+struct ContactLanes;
+
+/// Which code solves the constraints of the graph colours (warm start,
+/// solve, relax, approach, store): the scalar reference, one constraint at a
+/// time, or the lanes (contact_lanes.h), k_contact_lanes constraints side by
+/// side. Both compute the same bits. Not state: the build picks the default
+/// (CMake TANDEM_CONTACT_LANES), tests and benchmarks may switch it between
+/// steps (never during one).
+enum class ContactSolverPath : int32_t { scalar = 0, lanes = 1 };
+
+/// The path the next prepare_contact_constraints selects.
+ContactSolverPath contact_solver_path();
+/// Selects the path for the steps that follow (process-wide; call between
+/// steps only).
+void set_contact_solver_path(ContactSolverPath path);
 
 /// Graph colours for contact constraints; constraints that find none of
 /// them free are solved last, in an overflow group.
@@ -85,8 +100,13 @@ struct ContactConstraint {
 };
 
 /// Builds the step's constraints (arena) from touching contacts with at least
-/// one simulated body, in contact order, and the per-step constants.
+/// one simulated body, in contact order, and the per-step constants; on the
+/// lanes path also their lane blocks (pack_contact_lanes).
 void prepare_contact_constraints(World* world, StepContext* context);
+/// Transposes the constraints of the graph colours into lane blocks (arena,
+/// after the constraints; freed by store_contact_impulses), or sets
+/// context->lanes to null on the scalar path.
+void pack_contact_lanes(World* world, StepContext* context);
 /// Records each point's relative normal velocity (the bounce reference) at
 /// the start of a sub-step, before gravity and forces are integrated.
 void record_contact_approach(StepContext* context);

@@ -39,6 +39,17 @@ __extension__ typedef unsigned __int128 u128;
   if (sum + (limit - 1) >= 2 * limit - 1) return Q32::from_raw(p > 0 ? INT64_MAX : -INT64_MAX);
   return Q32::from_raw(static_cast<int64_t>((p + ((s128{1} << 31) - (p < 0 ? 1 : 0))) >> 32));
 }
+/// Bits 32..95 of p + 2^31 − [p < 0] for the 128-bit value p = hi·2^64 + lo:
+/// p rounded to nearest (ties away from zero) and shifted right by 32, as
+/// 64-bit words, branch-free (the carry out of the low word, the sign from
+/// hi's top bit). Equal to the s128 formula's low 64 bits for every p; the
+/// rounded Q32.32 value itself whenever it fits.
+inline int64_t round_shift_words(uint64_t lo, uint64_t hi) {
+  const uint64_t half = (uint64_t{1} << 31) - (hi >> 63);
+  const uint64_t low = lo + half;
+  const uint64_t high = hi + (low < half ? 1 : 0);
+  return static_cast<int64_t>((low >> 32) | (high << 32));
+}
 /// The exact 128-bit value (a Q64.64 sum, modulo 2^128 as the checked path's
 /// wide::add) rounded once to Q32.32 and saturated to ±(2^63 − 1) exactly
 /// where the checked operators saturate: every build computes the same bits
@@ -47,8 +58,7 @@ __extension__ typedef unsigned __int128 u128;
 inline Q32 round_shift(u128 sum) {
   const uint64_t hi = static_cast<uint64_t>(sum >> 64);
   if (hi + (uint64_t{1} << 30) >= (uint64_t{1} << 31)) [[unlikely]] return round_shift_wide(sum);
-  const s128 p = static_cast<s128>(sum);
-  return Q32::from_raw(static_cast<int64_t>((p + ((s128{1} << 31) - (p < 0 ? 1 : 0))) >> 32));
+  return Q32::from_raw(round_shift_words(static_cast<uint64_t>(sum), hi));
 }
 inline u128 product(int64_t a, int64_t b) { return static_cast<u128>(static_cast<s128>(a) * b); }
 /// a·b, rounded once.

@@ -89,6 +89,10 @@ struct StepContext {
   /// First constraint of each colour (the overflow colour is k_contact_colour_count), and one past the last.
   int32_t colour_offsets[k_contact_colour_count + 2] = {};
   int32_t* bounce_marks = nullptr;     ///< per solver index: last sub-step with a latched bounce, or −1
+  /// The colours' constraints in lane blocks (contact_lanes.h), or null on the scalar path.
+  ContactLanes* lanes = nullptr;
+  /// First lane block of each colour, and one past the last (colours only; the overflow stays scalar).
+  int32_t lane_offsets[k_contact_colour_count + 1] = {};
   bool bounced_this_sub_step = false;  ///< some point latched a bounce in the current sub-step
 
   // Continuous collision (continuous.cpp).
