@@ -158,6 +158,46 @@ TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked: 1:10 and 1:100 hold, l
   CHECK(faults.count() == 0);
 }
 
+TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box passes the light one, nothing goes through the ground, no fault",
+          "[stress][limits]") {
+  FaultCount faults;
+  // A 1 m heavy box thrown down at 10 or 100 m/s onto a 1 m light box resting
+  // on a 2 m thick static ground (top face at y = 0), 100,000 kg on 1 kg and
+  // 100 kg on 0.001 kg. The soft contact cannot hold the light box up (see
+  // the stacked ratios above): the heavy box passes through it, pressing it
+  // up to 0.38 m into the ground (measured: lowest light centre 0.136 m at
+  // 10 m/s, 0.120 m at 100 m/s), and the two end side by side on the ground.
+  // Neither goes through the ground.
+  struct Case { Q32 light; Q32 heavy; Q32 speed; };
+  const Case cases[] = {{1_q32, 100000_q32, 10_q32}, {1_q32, 100000_q32, 100_q32},
+                        {0.001_q32, 100_q32, 10_q32}, {0.001_q32, 100_q32, 100_q32}};
+  for (const Case& c : cases) {
+    TestWorld w;
+    static_box(w.id, Vec2{0_q32, -1_q32}, 20_q32, 1_q32);
+    const BodyId light = dynamic_box(w.id, Vec2{0_q32, 0.5_q32}, 0.5_q32, 0.5_q32, c.light);
+    const BodyId heavy = dynamic_box(w.id, Vec2{0_q32, 3_q32}, 0.5_q32, 0.5_q32, c.heavy);
+    REQUIRE(body_set_linear_velocity(heavy, Vec2{0_q32, -c.speed}).ok());
+    long double lowest_light = 1e9L, lowest_heavy = 1e9L;
+    for (int t = 0; t < 300; ++t) {
+      REQUIRE(world_step(w.id, k_dt).ok());
+      lowest_light = std::min(lowest_light, ld(body_world_center(light).y));
+      lowest_heavy = std::min(lowest_heavy, ld(body_world_center(heavy).y));
+    }
+    std::printf("limits: %g kg at %g m/s onto %g kg: lowest centres light %.4Lf m, heavy %.4Lf m; final light %.4Lf, "
+                "heavy %.4Lf (ground top at 0)\n",
+                body_mass(heavy).to_double(), c.speed.to_double(), body_mass(light).to_double(), lowest_light,
+                lowest_heavy, ld(body_world_center(light).y), ld(body_world_center(heavy).y));
+    INFO(body_mass(heavy).to_double() << " kg at " << c.speed.to_double() << " m/s onto " << body_mass(light).to_double()
+                                      << " kg");
+    CHECK(lowest_light > 0.1L);
+    CHECK(lowest_heavy > 0.35L);
+    // Both at rest on the ground after 5 s, within the linear slop.
+    CHECK(ld(body_world_center(light).y) == Approx(0.5L).margin(0.005L));
+    CHECK(ld(body_world_center(heavy).y) == Approx(0.5L).margin(0.005L));
+  }
+  CHECK(faults.count() == 0);
+}
+
 TEST_CASE("limits: bodies at the mass, inertia and size limits, no fault", "[stress][limits]") {
   FaultCount faults;
   TestWorld w;
