@@ -359,6 +359,13 @@ struct ToiOutput {
 /// contact.
 ToiOutput time_of_impact(const ToiInput& input);
 
+/// time_of_impact stopping at a given core distance `target` (m, > 0)
+/// instead of max(linear slop, rA + rB − linear slop), with a tolerance of
+/// min(linear slop, target)/4. continuous.cpp uses it to stop a shape's
+/// centroid core halfway to an obstacle it already lies within the default
+/// target of.
+ToiOutput time_of_impact_to(const ToiInput& input, Q32 target);
+
 // ---------------------------------------------------------------------------
 // Contact manifolds
 // ---------------------------------------------------------------------------

@@ -23,7 +23,12 @@
 // contact solver owns it; stopping would freeze the body): instead a small
 // circle at the shape's centroid (a quarter of its thinnest extent) is swept,
 // so a fast spin cannot carry the shape's centre through the obstacle (the
-// fallback Box2D v3 uses too). The body's end
+// fallback Box2D v3 uses too). Where the centroid already lies within that
+// core's stopping distance (max(linear slop, radii − slop)) of the obstacle —
+// a shape no thicker than about the slop, such as a 5 mm circle or a
+// segment, resting on it — the core stops halfway to the obstacle instead
+// (time_of_impact_to), otherwise its sweep would report a hit at t = 0 and
+// stop nothing (formerly stress known issues 1 and 3). The body's end
 // pose becomes the sweep at the smallest t found (if < 1); its velocity is
 // kept, so the next step's speculative contact makes the collision response.
 //
@@ -211,6 +216,23 @@ Q32 first_impact(const World* world, const StepContext* context, int32_t i, cons
         }
         input.proxy_a = core;
         out = time_of_impact(input);
+        if (out.fraction == Q32::zero() || out.state == ToiState::overlapped) {
+          // The core already lies within the default target (max(linear
+          // slop, radii − slop)) of the obstacle: a shape whose thinnest
+          // extent is near the slop (a 5 mm circle, a segment) resting on
+          // it. Stop the centroid halfway to the obstacle instead, so it
+          // still cannot pass through (formerly stress known issue 1).
+          DistanceInput din;
+          din.proxy_a = core;
+          din.proxy_b = input.proxy_b;
+          din.transform_a = sweep_transform(input.sweep_a, Q32::zero());
+          din.transform_b = sweep_transform(input.sweep_b, Q32::zero());
+          din.use_radii = false;
+          const Q32 start = shape_distance(din).distance;
+          if (start > Q32::zero()) {
+            out = time_of_impact_to(input, start / 2);
+          }
+        }
       }
       if ((out.state == ToiState::hit || out.state == ToiState::failed) && out.fraction > Q32::zero() &&
           out.fraction < best) {

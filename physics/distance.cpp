@@ -36,8 +36,9 @@
 // advance by (d − target)/u without passing the first contact. target is
 // max(linear slop, rA + rB − linear slop) in core distance (Box2D's choice:
 // polygons stop a slop apart, rounded shapes a slop into each other), and the
-// iteration stops within k_linear_slop/4 above it. Each advance is compared as
-// (d − target) ≥ (t_max − t)·u before dividing, so no quotient overflows.
+// iteration stops within k_linear_slop/4 above it (time_of_impact_to takes
+// the caller's target instead, within a quarter of it when that is smaller).
+// Each advance is compared as (d − target) ≥ (t_max − t)·u before dividing, so no quotient overflows.
 // Iterations are bounded (k_max_cast_iterations, k_max_toi_iterations); when
 // they run out the result is "no hit" / ToiState::failed with the last safe
 // time — never a time past the true contact.
@@ -406,12 +407,12 @@ Transform sweep_transform(const Sweep& sweep, Q32 t) {
   return {c - rotate(q, sweep.local_center), q};
 }
 
-ToiOutput time_of_impact(const ToiInput& input) {
+namespace {
+
+/// Conservative advancement to the core distance `target` within `tolerance`.
+ToiOutput advance_to_impact(const ToiInput& input, Q32 target, Q32 tolerance) {
   ToiOutput out;
   const Q32 t_max = clamp(input.max_fraction, Q32::zero(), Q32::one());
-  const Q32 total_radius = input.proxy_a.radius + input.proxy_b.radius;
-  const Q32 target = max(k_linear_slop, total_radius - k_linear_slop);
-  const Q32 tolerance = k_linear_slop / 4;
 
   const Sweep& sa = input.sweep_a;
   const Sweep& sb = input.sweep_b;
@@ -451,6 +452,17 @@ ToiOutput time_of_impact(const ToiInput& input) {
   out.state = ToiState::failed;
   out.fraction = t;
   return out;
+}
+
+}  // namespace
+
+ToiOutput time_of_impact(const ToiInput& input) {
+  const Q32 total_radius = input.proxy_a.radius + input.proxy_b.radius;
+  return advance_to_impact(input, max(k_linear_slop, total_radius - k_linear_slop), k_linear_slop / 4);
+}
+
+ToiOutput time_of_impact_to(const ToiInput& input, Q32 target) {
+  return advance_to_impact(input, target, min(k_linear_slop, target) / 4);
 }
 
 }  // namespace tandem

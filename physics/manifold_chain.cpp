@@ -239,7 +239,16 @@ void collide_chain_core(const ChainSegment& chain, const Core& b, LocalManifold*
     if (incident_vertex < 0) return;
   }
 
-  // The segment is the reference face.
+  // The segment is the reference face. Off the SAT path (B a little apart,
+  // its normal snapped to the segment's at a flat or concave end, or a
+  // vertex of B over the segment), B may still lie mostly behind the
+  // segment where it is over it: a wall box much larger than the segment,
+  // beside a small body carrying chain segments, whose top edge runs nearly
+  // along the segment's normal. Clipping that edge to the segment's slab
+  // gave points hundreds of metres behind the segment (stress seed 776:
+  // separations of −260 m and −760 m; the solve spun the 1 cm body to 6·10^8
+  // rad/s and overflowed). As in the SAT path, such a segment does not push B.
+  if (!use_sat && overlap_is_behind(c, b)) return;
   const int32_t inc = incident_edge >= 0 ? incident_edge : incident_edge_at_vertex(b, incident_vertex, c.normal1);
   clip(seg, 0, b, inc, false, Outside::nothing, m);
 }

@@ -145,7 +145,7 @@ void mutate(Sim* sim, Rng* rng) {
       break;
     }
     case 5:
-      if (body_is_valid(b)) REQUIRE((body_is_enabled(b) ? body_disable(b) : body_enable(b)).ok());
+      if (body_is_valid(b)) REQUIRE(body_set_enabled(b, !body_is_enabled(b)).ok());
       break;
     case 6:
       if (body_is_valid(b)) (void)body_set_awake(b, false);
@@ -372,10 +372,10 @@ TEST_CASE("a query sees a teleport, a creation and a destruction made after the 
     REQUIRE(world_overlap_point(world.id, {Q32(-300), Q32(-300)}, QueryFilter{}, &found).ok());
     REQUIRE(found.size() == 1);
     CHECK(found[0] == made.value);
-    REQUIRE(body_disable(box.value).ok());
+    REQUIRE(body_set_enabled(box.value, false).ok());
     REQUIRE(world_overlap_point(world.id, {Q32(-300), Q32(-300)}, QueryFilter{}, &found).ok());
     CHECK(found.empty());
-    REQUIRE(body_enable(box.value).ok());
+    REQUIRE(body_set_enabled(box.value, true).ok());
     REQUIRE(world_overlap_point(world.id, {Q32(-300), Q32(-300)}, QueryFilter{}, &found).ok());
     CHECK(found.size() == 1);
     REQUIRE(destroy_body(box.value).ok());
