@@ -22,4 +22,26 @@ struct ScopedWorld : UniqueWorld {
   explicit ScopedWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
 };
 
+/// A single-threaded task system that runs each task's items one at a time
+/// from the last to the first (WorldDef::enqueue_task / finish_task with
+/// user_task_context = &a ReversingTasks).
+struct ReversingTasks {
+  TaskFunction task = nullptr;
+  int32_t item_count = 0;
+  void* task_context = nullptr;
+};
+
+inline void* reversing_enqueue(TaskFunction task, int32_t item_count, int32_t, void* task_context, void* user_context) {
+  auto* r = static_cast<ReversingTasks*>(user_context);
+  r->task = task;
+  r->item_count = item_count;
+  r->task_context = task_context;
+  return r;
+}
+
+inline void reversing_finish(void*, void* user_context) {
+  auto* r = static_cast<ReversingTasks*>(user_context);
+  for (int32_t i = r->item_count - 1; i >= 0; --i) r->task(i, i + 1, r->task_context);
+}
+
 }  // namespace tandem::test_support

@@ -103,27 +103,6 @@ std::vector<int64_t> run_volley(WorldDef def, int steps, CustomFilterFn filter =
   return trail;
 }
 
-/// A single-threaded task system that runs each task's items one at a time
-/// from the last to the first.
-struct ReversingTasks {
-  TaskFunction task = nullptr;
-  int32_t item_count = 0;
-  void* task_context = nullptr;
-};
-
-void* reversing_enqueue(TaskFunction task, int32_t item_count, int32_t, void* task_context, void* user_context) {
-  auto* r = static_cast<ReversingTasks*>(user_context);
-  r->task = task;
-  r->item_count = item_count;
-  r->task_context = task_context;
-  return r;
-}
-
-void reversing_finish(void*, void* user_context) {
-  auto* r = static_cast<ReversingTasks*>(user_context);
-  for (int32_t i = r->item_count - 1; i >= 0; --i) r->task(i, i + 1, r->task_context);
-}
-
 /// A custom filter that accepts every pair and records whether it was ever
 /// called from a thread other than `owner`.
 struct ThreadCheckingFilter {

@@ -93,27 +93,6 @@ int step_until_asleep(WorldId w, const std::vector<BodyId>& bodies, int max_step
   return -1;
 }
 
-/// A single-threaded task system that runs each task's items one at a time
-/// from the last to the first.
-struct ReversingTasks {
-  TaskFunction task = nullptr;
-  int32_t item_count = 0;
-  void* task_context = nullptr;
-};
-
-void* reversing_enqueue(TaskFunction task, int32_t item_count, int32_t, void* task_context, void* user_context) {
-  auto* r = static_cast<ReversingTasks*>(user_context);
-  r->task = task;
-  r->item_count = item_count;
-  r->task_context = task_context;
-  return r;
-}
-
-void reversing_finish(void*, void* user_context) {
-  auto* r = static_cast<ReversingTasks*>(user_context);
-  for (int32_t i = r->item_count - 1; i >= 0; --i) r->task(i, i + 1, r->task_context);
-}
-
 /// What the sleep worker test records per step.
 struct SleepTrail {
   std::vector<int64_t> raw;     ///< every body's pose and velocity, raw, after each step
