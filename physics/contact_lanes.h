@@ -1,13 +1,13 @@
 // contact_lanes.h — the contact constraints of one graph colour in lanes
 // (internal): structure-of-arrays blocks of k_contact_lanes constraints,
 // transposed from the step's ContactConstraint array after prepare
-// (contact_solver.cpp, pack_contact_lanes) and solved lane by lane.
+// (contact_lanes.cpp, pack_contact_lanes) and solved lane by lane.
 //
 // Why lanes: the constraints of one colour touch disjoint movable bodies, so
 // the k_contact_lanes constraints of a block can be gathered, solved side by
 // side and scattered with the same result as solving them one after another.
 // Each field is a short array over the lanes, so the kernels in
-// contact_solver.cpp are loops `for lane in 0…k_contact_lanes−1` over plain
+// contact_lanes.cpp are loops `for lane in 0…k_contact_lanes−1` over plain
 // Q32.32 values with the control flow of the scalar solver turned into
 // per-lane selects (touching, active, bouncing, skipped). The arithmetic of
 // a lane is the scalar path's own in_range helpers, in the same order, so a
