@@ -515,18 +515,26 @@ Status Session::ring_slot(int64_t signed_tick, size_t* slot) const {
   return {};
 }
 
-Status Session::state_image(int64_t tick, std::vector<uint8_t>* out) const {
+Result<WorldId> Session::ring_world(int64_t tick) const {
   size_t h = 0;
   const Status kept = ring_slot(tick, &h);
-  if (!kept.ok()) return kept;
+  if (!kept.ok()) return {kept, {}};
+  Result<WorldId> w = create_world(default_world_def());
+  if (!w.ok()) return w;
+  const Status s = rollback_restore(w.value, snap_world_[h]);
+  if (s.ok()) return w;
+  (void)destroy_world(w.value);
+  return {s, {}};
+}
+
+Status Session::state_image(int64_t tick, std::vector<uint8_t>* out) const {
   // The compact image restored into a scratch world, then encoded portably.
   // Contacts between simulated bodies carry no manifold geometry in the
   // compact image (the next step recomputes it), so those fields read as zero
   // here on every peer alike; bodies, joints and impulses are exact.
-  Result<WorldId> w = create_world(default_world_def());
+  const Result<WorldId> w = ring_world(tick);
   if (!w.ok()) return w.status;
-  Status s = rollback_restore(w.value, snap_world_[h]);
-  if (s.ok()) s = snapshot_into(w.value, out);
+  const Status s = snapshot_into(w.value, out);
   (void)destroy_world(w.value);
   return s;
 }

@@ -296,6 +296,7 @@ class Session {
   void store_input(uint32_t player, uint64_t tick, const uint8_t* bytes);
   uint64_t all_known_through() const;
   Status ring_slot(int64_t tick, size_t* slot) const;  // the snapshot slot holding `tick`, or why none does
+  Result<WorldId> ring_world(int64_t tick) const;      // a scratch world restored from that slot (caller destroys it)
   bool simulate(uint64_t tick);
   void rollback();
   void confirm();

@@ -245,13 +245,9 @@ void Session::handle_input(uint32_t from, const SessionPacket& p) {
 // --- per-body hashes ----------------------------------------------------------------
 
 Status Session::local_body_hashes(int64_t tick, std::vector<uint64_t>* out) const {
-  size_t h = 0;
-  const Status kept = ring_slot(tick, &h);
-  if (!kept.ok()) return kept;
-  Result<WorldId> w = create_world(default_world_def());
+  const Result<WorldId> w = ring_world(tick);
   if (!w.ok()) return w.status;
-  Status s = rollback_restore(w.value, snap_world_[h]);
-  if (s.ok()) s = world_body_hashes(w.value, out);
+  const Status s = world_body_hashes(w.value, out);
   (void)destroy_world(w.value);
   return s;
 }
