@@ -194,6 +194,18 @@ struct MassData {
   Q32 rotational_inertia;  ///< about the centre of mass, kg·m²
 };
 
+/// Mass data of one body as a compact rollback buffer carries it beside its
+/// image (replay/rollback.h; not hashed): fixed between shape changes.
+struct RollbackBodyMass {
+  Q32 mass;                ///< kg
+  Q32 rotational_inertia;  ///< kg·m²
+  Q32 inv_mass;            ///< 1/kg (0 for static and kinematic bodies)
+  Q32 inv_inertia;         ///< 1/(kg·m²)
+  Vec2 local_center;       ///< centre of mass, local, m
+  Q32 min_extent;          ///< m
+  Q32 max_extent;          ///< m
+};
+
 /// Mass of a circle with density in kg/m²: m = ρπr², I = m·r²/2 (a few raw
 /// units of rounding). Saturates (fault) when ρπr⁴/2 leaves the range.
 MassData compute_circle_mass(const Circle& circle, Q32 density);

@@ -74,7 +74,4 @@ Status world_overlap_capsule(WorldId world, const Capsule& capsule, Transform tr
 Status world_overlap_polygon(WorldId world, const Polygon& polygon, Transform transform, QueryFilter filter,
                              std::vector<ShapeId>* out);
 
-/// Internal: the GJK proxy of any geometry (chain segments: their segment).
-ShapeProxy make_shape_proxy(const ShapeGeometry& geometry);
-
 }  // namespace tandem

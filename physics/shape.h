@@ -63,6 +63,10 @@ ShapeId make_shape_id(const World& world, int32_t index);
 /// compute_*_aabb).
 AABB compute_shape_aabb(const ShapeGeometry& geometry, Transform transform);
 
+/// The GJK proxy of any geometry (chain segments: their segment); the
+/// queries, sensor events and continuous collision use it (query.cpp).
+ShapeProxy make_shape_proxy(const ShapeGeometry& geometry);
+
 /// True when every point of the geometry, grown by its radius, lies within
 /// ±k_max_shape_size of the body origin on each axis (and a polygon has 3 to
 /// k_max_polygon_vertices vertices): the check create_*_shape applies, for

@@ -24,9 +24,11 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fixed/fixed.h"
 #include "fixed/vec2.h"
+#include "physics/collision.h"
 #include "physics/ids.h"
 #include "physics/status.h"
 
@@ -195,5 +197,44 @@ bool check_image(StateImage& image, StateRefusal* out);
 /// The image's buffers are swapped with the world's (no allocation in a warm
 /// loop); the image is left holding the world's old state.
 void commit_image(WorldState& world, StateImage& image);
+
+// ---------------------------------------------------------------------------
+// The compact rollback image (replay/rollback.h). physics writes, checks and
+// applies its records itself (physics/state_compact.cpp lays them out): which
+// fields a record keeps, packs into flag bits, leaves out when at their
+// default, carries beside the image or recomputes is a property of the
+// physics records, decided next to them, and the records kept whole run the
+// field lists of state_fields.h. replay owns the image's header (magic,
+// version), the buffer and the hash. The records start with one byte, the
+// broad-phase kind, which the hash skips (the kind does not change results).
+// ---------------------------------------------------------------------------
+
+/// What travels beside a compact image, by record index (not hashed).
+struct CompactStructure {
+  std::vector<ShapeGeometry>* geometries;   ///< each live shape's geometry
+  std::vector<RollbackBodyMass>* masses;    ///< each live body's mass data
+};
+/// The same, read-only (restore).
+struct CompactStructureView {
+  const std::vector<ShapeGeometry>* geometries;
+  const std::vector<RollbackBodyMass>* masses;
+};
+
+/// An upper bound of the bytes write_compact_records writes for the world.
+size_t compact_records_bound(const WorldState& world);
+/// Writes the world's compact records at `out` (compact_records_bound bytes
+/// available) and the structure beside them (grown as needed, capacity
+/// reused); returns the bytes written.
+size_t write_compact_records(WorldState& world, uint8_t* out, CompactStructure structure);
+/// Checks the compact records at image[from, size) against the structure:
+/// bytes left, enums, indices, cross references and value ranges; nothing is
+/// changed. False with *error = "offset N: <record> <field> ..." (offsets
+/// from the start of `image`) on the first failure.
+bool check_compact_records(const uint8_t* image, size_t size, size_t from, CompactStructureView structure,
+                           std::string* error);
+/// Replaces the world's state with checked compact records and rebuilds what
+/// is derived from them (as commit_image); cannot fail.
+void apply_compact_records(WorldState& world, const uint8_t* image, size_t size, size_t from,
+                           CompactStructureView structure);
 
 }  // namespace tandem::state_access

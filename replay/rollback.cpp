@@ -1,289 +1,90 @@
 // rollback.cpp — the compact rollback snapshot (rollback.h describes what it
 // holds and why that is enough).
 //
-// DESIGN. Save writes the image with explicit little-endian stores into a
-// buffer sized once for an upper bound (no ByteWriter bookkeeping per field;
-// each store is one move on x86-64), then trims it. Restore runs the same
-// decoder twice over the image: the first pass (Apply = false) reads through
-// a bounds-checked ByteReader and checks every structure, index and range
-// without touching the world, the second (Apply = true) writes the world and
-// cannot fail, so a refused image changes nothing and an accepted one needs
-// no scratch copy of the world (the portable restore decodes into a whole
-// scratch World and swaps it in, which costs most of its time).
+// DESIGN. replay owns the image's frame: the header (magic "TNDR", u32
+// version), the buffer and its reuse, and the hash. The records after the
+// header are physics' (physics/state_compact.cpp lays them out and lists,
+// record by record, which fields are packed, carried beside the image or
+// recomputed): replay asks for them through physics/state_access.h
+// (write_compact_records, check_compact_records, apply_compact_records), as
+// the portable format asks for its field lists. The first record byte is the
+// broad-phase kind, which rollback_hash skips.
 //
-// Layout of the image, version 1:
-//   [0, 4)  magic "TNDR"       [4, 8)  u32 version       [8]  broad-phase kind
-//   world   WorldDef (broad phase written as naive), u64 step count,
-//           i32 last solver body count
-//   pools   body, shape, joint: u32 capacity, then per slot u32 generation
-//           and u8 alive
-//   bodies  per live body: u8 flags (type, enable_sleep, awake, enabled,
-//           fixed_rotation, bullet), u8 presence bits, position, rotation,
-//           then the present optional fields (velocity, force and torque,
-//           sleep time, sleep island, user data, damping, gravity scale)
-//   shapes  per live shape: i32 body, u8 type and flags with presence bits,
-//           then materials, filter, user data when not the defaults
-//   contacts u32 count; per contact i32 shape_a, i32 shape_b, u8 point count
-//           (bit 2: a full record follows, state_fields.h visit_contact);
-//           compact: per point u16 feature id, normal and tangent impulse
-//   pairs   u8 1 when the touching pairs are exactly the touching contacts
-//           (always after a step), else 0, u32 count and the pairs; then the
-//           sensor overlaps (u32 count, pairs)
-//   joints  joint records (visit_joint), then pending joint events
-// rollback_hash hashes bytes [9, end): everything but the broad-phase kind.
+// Restore checks the whole image first (header here, records in physics)
+// and changes the world only once it is accepted, so a refused image changes
+// nothing.
 #include "replay/rollback.h"
+
+#include <cstring>
+#include <string>
 
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "replay/rollback_internal.h"
+#include "physics/state_access.h"
 
 namespace tandem {
 
-using namespace state_detail;
-using namespace rollback_detail;
-
 namespace {
 
-/// Explicit little-endian stores into a buffer sized beforehand.
-struct Out {
-  uint8_t* p;
-  void u8(uint8_t v) { *p++ = v; }
-  void u16(uint16_t v) {
-    store_le16(p, v);
-    p += 2;
-  }
-  void u32(uint32_t v) {
-    store_le32(p, v);
-    p += 4;
-  }
-  void u64(uint64_t v) {
-    store_le64(p, v);
-    p += 8;
-  }
-  void i32(int32_t v) { u32(static_cast<uint32_t>(v)); }
-  void q32(Q32 v) { u64(static_cast<uint64_t>(v.raw)); }
-  void vec2(Vec2 v) {
-    q32(v.x);
-    q32(v.y);
-  }
-};
+/// The header: magic and version; the records start with the broad-phase kind.
+constexpr size_t k_header_bytes = 8;
+/// rollback_hash hashes from here: everything but the header and the kind.
+constexpr size_t k_hashed_from = k_header_bytes + 1;
 
-/// A contact that the next step recomputes from the poses: both bodies
-/// simulated, shapes current, cached fields as update_contacts makes them.
-bool contact_is_recomputed(const World& w, const Contact& c) {
-  const size_t sa = static_cast<size_t>(c.shape_a);
-  const size_t sb = static_cast<size_t>(c.shape_b);
-  if (w.shape_pool.alive[sa] == 0 || w.shape_pool.alive[sb] == 0) return false;
-  if (w.shape_pool.generations[sa] != c.generation_a || w.shape_pool.generations[sb] != c.generation_b) return false;
-  if (w.shapes[sa].body_index != c.body_a || w.shapes[sb].body_index != c.body_b) return false;
-  if (c.flags != (c.manifold.point_count > 0 ? k_contact_touching : 0u)) return false;
-  return body_is_simulated(w.bodies[static_cast<size_t>(c.body_a)]) &&
-         body_is_simulated(w.bodies[static_cast<size_t>(c.body_b)]);
+void store_u32(uint8_t* p, uint32_t v) {
+  for (size_t i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
 }
 
-/// True when the touching pairs are the touching contacts (then not stored).
-bool touching_is_derived(const World& w) {
-  const std::vector<PairRecord>& t = w.events.touching;
-  size_t k = 0;
-  for (const Contact& c : w.contacts) {
-    if ((c.flags & k_contact_touching) == 0) continue;
-    if (k == t.size()) return false;
-    const PairRecord& p = t[k++];
-    if (p.shape_a != c.shape_a || p.shape_b != c.shape_b || p.generation_a != c.generation_a ||
-        p.generation_b != c.generation_b) {
-      return false;
-    }
-  }
-  return k == t.size();
+uint32_t load_u32(const uint8_t* p) {
+  uint32_t v = 0;
+  for (size_t i = 0; i < 4; ++i) v |= static_cast<uint32_t>(p[i]) << (8 * i);
+  return v;
 }
 
-size_t image_bound(const World& w) {
-  const RecordSizes& rs = record_sizes();
-  size_t n = k_hashed_from + rs.world;
-  n += 3 * 4 + (w.body_pool.generations.size() + w.shape_pool.generations.size() + w.joint_pool.generations.size()) * 5;
-  n += static_cast<size_t>(w.body_pool.alive_count) * k_max_body_bytes;
-  n += static_cast<size_t>(w.shape_pool.alive_count) * k_max_shape_bytes;
-  n += 4 + w.contacts.size() * (9 + rs.contact + 2 * rs.contact_point);
-  n += 1 + 4 + w.events.touching.size() * 16 + 4 + w.events.sensor_overlaps.size() * 16;
-  n += static_cast<size_t>(w.joint_pool.alive_count) * rs.joint;
-  n += 4 + w.joints.pending.size() * 64;
-  return n;
-}
-
-void write_pool(Out& o, const IdPool& pool) {
-  o.u32(static_cast<uint32_t>(pool.generations.size()));
-  for (size_t i = 0; i < pool.generations.size(); ++i) {
-    o.u32(pool.generations[i]);
-    o.u8(pool.alive[i] != 0 ? 1 : 0);
-  }
-}
-
-/// Runs a WriteVisitor at o.p (the record is at most `bound` bytes).
-template <typename F>
-void write_visited(Out& o, size_t bound, F&& f) {
-  ByteWriter bw(o.p, bound);
-  WriteVisitor wv{&bw};
-  FieldsOf<false> v{wv};
-  f(v);
-  o.p += bw.size();
-}
-
-void write_image(World& w, RollbackBuffer* buf) {
-  const RecordSizes& rs = record_sizes();
-  buf->image.resize(image_bound(w));
-  Out o{buf->image.data()};
-  o.u8(k_rollback_magic[0]);
-  o.u8(k_rollback_magic[1]);
-  o.u8(k_rollback_magic[2]);
-  o.u8(k_rollback_magic[3]);
-  o.u32(k_rollback_format_version);
-  o.u8(static_cast<uint8_t>(w.def.broad_phase));
-  {
-    WorldDef def = w.def;
-    def.broad_phase = BroadPhaseKind::naive;  // hashed as naive (byte 8 holds the kind)
-    uint64_t steps = w.step_count;
-    int32_t solver_bodies = w.last_solver_body_count;
-    write_visited(o, rs.world, [&](auto& v) {
-      visit_world_def(v, def);
-      v.u64("", steps);
-      v.i32("", solver_bodies);
-    });
-  }
-
-  write_pool(o, w.body_pool);
-  const size_t body_cap = w.body_pool.generations.size();
-  if (buf->masses.size() < body_cap) buf->masses.resize(body_cap);
-  for (size_t i = 0; i < body_cap; ++i) {
-    if (w.body_pool.alive[i] == 0) continue;
-    const Body& b = w.bodies[i];
-    const BodySim& s = w.body_sims[i];
-    uint8_t flags = static_cast<uint8_t>(static_cast<uint8_t>(b.type) & k_body_type_mask);
-    if (b.enable_sleep) flags |= k_body_enable_sleep;
-    if (b.awake) flags |= k_body_awake;
-    if (b.enabled) flags |= k_body_enabled;
-    if (b.fixed_rotation) flags |= k_body_fixed_rotation;
-    if (b.bullet) flags |= k_body_bullet;
-    uint8_t present = 0;
-    const Vec2 zero{};
-    if (s.linear_velocity != zero || s.angular_velocity != Q32::zero()) present |= k_has_velocity;
-    if (s.force != zero || s.torque != Q32::zero()) present |= k_has_force;
-    if (b.sleep_time != Q32::zero()) present |= k_has_sleep_time;
-    if (b.sleep_island != k_null_index) present |= k_has_sleep_island;
-    if (b.user_data != 0) present |= k_has_user_data;
-    if (s.linear_damping != Q32::zero() || s.angular_damping != Q32::zero()) present |= k_has_damping;
-    if (s.gravity_scale != Q32::one()) present |= k_has_gravity_scale;
-    o.u8(flags);
-    o.u8(present);
-    o.vec2(s.transform.p);
-    o.q32(s.transform.q.c);
-    o.q32(s.transform.q.s);
-    if (present & k_has_velocity) {
-      o.vec2(s.linear_velocity);
-      o.q32(s.angular_velocity);
-    }
-    if (present & k_has_force) {
-      o.vec2(s.force);
-      o.q32(s.torque);
-    }
-    if (present & k_has_sleep_time) o.q32(b.sleep_time);
-    if (present & k_has_sleep_island) o.i32(b.sleep_island);
-    if (present & k_has_user_data) o.u64(b.user_data);
-    if (present & k_has_damping) {
-      o.q32(s.linear_damping);
-      o.q32(s.angular_damping);
-    }
-    if (present & k_has_gravity_scale) o.q32(s.gravity_scale);
-    buf->masses[i] = RollbackBodyMass{b.mass,         b.rotational_inertia, s.inv_mass,    s.inv_inertia,
-                                      s.local_center, b.min_extent,         b.max_extent};
-  }
-
-  write_pool(o, w.shape_pool);
-  const size_t shape_cap = w.shape_pool.generations.size();
-  if (buf->geometries.size() < shape_cap) buf->geometries.resize(shape_cap);
-  for (size_t i = 0; i < shape_cap; ++i) {
-    if (w.shape_pool.alive[i] == 0) continue;
-    const Shape& s = w.shapes[i];
-    uint8_t bits = static_cast<uint8_t>(static_cast<uint8_t>(s.type) & k_shape_type_mask);
-    if (s.is_sensor) bits |= k_shape_sensor;
-    if (s.enable_hit_events) bits |= k_shape_hit_events;
-    const bool materials = !default_materials(s);
-    const bool filter = !default_filter(s.filter);
-    if (materials) bits |= k_shape_has_materials;
-    if (filter) bits |= k_shape_has_filter;
-    if (s.user_data != 0) bits |= k_shape_has_user_data;
-    o.i32(s.body_index);
-    o.u8(bits);
-    if (materials) {
-      o.q32(s.friction);
-      o.q32(s.restitution);
-      o.q32(s.density);
-    }
-    if (filter) {
-      o.u64(s.filter.category_bits);
-      o.u64(s.filter.mask_bits);
-      o.i32(s.filter.group_index);
-    }
-    if (s.user_data != 0) o.u64(s.user_data);
-    copy_geometry(w.shape_geometries[i], &buf->geometries[i]);
-  }
-
-  o.u32(static_cast<uint32_t>(w.contacts.size()));
-  const size_t full_bound = rs.contact + 2 * rs.contact_point;
-  for (Contact& c : w.contacts) {
-    o.i32(c.shape_a);
-    o.i32(c.shape_b);
-    const int32_t n = std::clamp(c.manifold.point_count, int32_t{0}, int32_t{2});
-    if (contact_is_recomputed(w, c)) {
-      o.u8(static_cast<uint8_t>(n));
-      for (int32_t k = 0; k < n; ++k) {
-        const size_t kk = static_cast<size_t>(k);
-        o.u16(c.manifold.points[kk].id);
-        o.q32(c.normal_impulse[kk]);
-        o.q32(c.tangent_impulse[kk]);
-      }
-    } else {
-      o.u8(static_cast<uint8_t>(n | k_contact_full));
-      write_visited(o, full_bound, [&](auto& v) { visit_contact(v, c); });
-    }
-  }
-
-  const bool derived = touching_is_derived(w);
-  o.u8(derived ? 1 : 0);
-  const auto write_pairs = [&](const std::vector<PairRecord>& pairs) {
-    o.u32(static_cast<uint32_t>(pairs.size()));
-    for (const PairRecord& p : pairs) {
-      o.i32(p.shape_a);
-      o.i32(p.shape_b);
-      o.u32(p.generation_a);
-      o.u32(p.generation_b);
-    }
-  };
-  if (!derived) write_pairs(w.events.touching);
-  write_pairs(w.events.sensor_overlaps);
-
-  write_pool(o, w.joint_pool);
-  for (size_t i = 0; i < w.joint_pool.generations.size(); ++i) {
-    if (w.joint_pool.alive[i] == 0) continue;
-    write_visited(o, rs.joint, [&](auto& v) { visit_joint(v, w.joints.joints[i]); });
-  }
-  o.u32(static_cast<uint32_t>(w.joints.pending.size()));
-  for (JointEvent& e : w.joints.pending) {
-    write_visited(o, 64, [&](auto& v) { visit_joint_event(v, e); });
-  }
-  const size_t size = static_cast<size_t>(o.p - buf->image.data());
-  TANDEM_ASSERT(size <= buf->image.size());
-  buf->image.resize(size);
+Status refuse(size_t at, const std::string& what) {
+  return Status{StatusCode::invalid_argument, "rollback_restore: offset " + std::to_string(at) + ": " + what};
 }
 
 }  // namespace
 
 Status rollback_save(WorldId world, RollbackBuffer* buffer) {
-  World* w = nullptr;
-  Status s = resolve_world(world, "rollback_save", true, &w);
+  state_access::WorldState* w = nullptr;
+  Status s = state_access::resolve_world_state(world, "rollback_save", true, &w);
   if (!s.ok()) return s;
-  if (buffer == nullptr) return make_status(StatusCode::invalid_argument, "rollback_save: buffer is null");
-  write_image(*w, buffer);
+  if (buffer == nullptr) return Status{StatusCode::invalid_argument, "rollback_save: buffer is null"};
+  std::vector<uint8_t>& image = buffer->image;
+  image.resize(k_header_bytes + state_access::compact_records_bound(*w));
+  std::memcpy(image.data(), k_rollback_magic, 4);
+  store_u32(image.data() + 4, k_rollback_format_version);
+  const size_t n = state_access::write_compact_records(*w, image.data() + k_header_bytes,
+                                                       {&buffer->geometries, &buffer->masses});
+  image.resize(k_header_bytes + n);
+  return s;
+}
+
+Status rollback_restore(WorldId world, const RollbackBuffer& buffer) {
+  state_access::WorldState* w = nullptr;
+  Status s = state_access::resolve_world_state(world, "rollback_restore", true, &w);
+  if (!s.ok()) return s;
+  const uint8_t* data = buffer.image.data();
+  const size_t size = buffer.image.size();
+  if (size < k_hashed_from) {
+    return refuse(0, "expected " + std::to_string(k_hashed_from) + " bytes of header (magic, version, broad-phase kind), " +
+                         std::to_string(size) + " left");
+  }
+  if (std::memcmp(data, k_rollback_magic, 4) != 0) return refuse(0, "expected magic \"TNDR\" (a compact rollback image)");
+  const uint32_t version = load_u32(data + 4);
+  if (version != k_rollback_format_version) {
+    return refuse(4, "expected rollback format version " + std::to_string(k_rollback_format_version) + ", got " +
+                         std::to_string(version));
+  }
+  const state_access::CompactStructureView structure{&buffer.geometries, &buffer.masses};
+  std::string error;
+  if (!state_access::check_compact_records(data, size, k_header_bytes, structure, &error)) {
+    return Status{StatusCode::invalid_argument, "rollback_restore: " + error};
+  }
+  state_access::apply_compact_records(*w, data, size, k_header_bytes, structure);
   return s;
 }
 

@@ -54,6 +54,10 @@
 // sizes, counts against the bytes left, indices, enums and value ranges,
 // refusing with the byte offset and field; a refused restore changes nothing.
 //
+// LAYOUT. replay writes the header (magic, version) and hashes; physics
+// writes, checks and applies the records after it through its state door
+// (physics/state_access.h; physics/state_compact.cpp lays them out).
+//
 // COST (990-box pyramid, tools/bench/bench_rollback.cpp, docs/benchmarks.md):
 // no allocation after the first save into a buffer of the same scene.
 #pragma once
@@ -72,17 +76,6 @@ inline constexpr uint32_t k_rollback_format_version = 1;
 /// The 4 magic bytes at the start of a compact rollback image.
 inline constexpr uint8_t k_rollback_magic[4] = {'T', 'N', 'D', 'R'};
 
-/// Mass data of one body, carried beside the image (not hashed).
-struct RollbackBodyMass {
-  Q32 mass;
-  Q32 rotational_inertia;
-  Q32 inv_mass;
-  Q32 inv_inertia;
-  Vec2 local_center;
-  Q32 min_extent;
-  Q32 max_extent;
-};
-
 /// A reusable compact snapshot. Default-constructed empty; rollback_save fills
 /// it (reusing its capacity), rollback_restore reads it. Copyable (a ring of
 /// buffers is a std::vector<RollbackBuffer>).
@@ -92,7 +85,8 @@ struct RollbackBuffer {
   /// Geometry of each live shape at save time, by shape index (dead slots:
   /// unspecified).
   std::vector<ShapeGeometry> geometries;
-  /// Mass data of each live body at save time, by body index.
+  /// Mass data of each live body at save time, by body index
+  /// (RollbackBodyMass: physics/collision.h).
   std::vector<RollbackBodyMass> masses;
 };
 

@@ -5,12 +5,9 @@
 # physics/state_access.h, the interface through which physics lends its
 # state; and state_access.h itself may include only public headers (else the
 # door would let the internals through). Every other `#include "physics/..."`
-# in replay/ is a finding.
-#
-# Allowed for now, by name (each must still exist, so the list cannot rot):
-#   replay/rollback_internal.h — the compact rollback image still reads and
-#   writes physics records directly (issue 13: move it onto state_access.h
-#   and the field list of physics/state_fields.h).
+# in replay/ is a finding; no file is exempt (the compact rollback image,
+# once the last one, now reaches its records through state_access.h too:
+# physics/state_compact*.cpp write and read them).
 #
 # Usage: layering-lint.sh [REPO_ROOT]   lint REPO_ROOT (default: this repo)
 #        layering-lint.sh --self-test   check the lint on planted violations
@@ -19,7 +16,6 @@
 set -euo pipefail
 
 readonly k_state_interface="state_access.h"
-readonly k_allowed_files="replay/rollback_internal.h"
 
 # public_headers ROOT: the physics PUBLIC_HEADERS of ROOT/CMakeLists.txt, one a line.
 public_headers() {
@@ -47,16 +43,9 @@ lint() {
     echo "$root/CMakeLists.txt: cannot read the physics PUBLIC_HEADERS list"
     return 1
   fi
-  for rel in $k_allowed_files; do
-    if [[ ! -f $root/$rel ]]; then
-      echo "$rel: listed as allowed in layering-lint.sh but gone: remove it from the list"
-      found=$((found + 1))
-    fi
-  done
   shopt -s nullglob
   for file in "$root"/replay/*.h "$root"/replay/*.cpp "$root/physics/$k_state_interface"; do
     rel=${file#"$root"/}
-    [[ " $k_allowed_files " == *" $rel "* ]] && continue
     while IFS=: read -r line header; do
       header=${header#*\"physics/}
       header=${header%%\"*}
@@ -78,7 +67,6 @@ self_test() {
   printf 'tandem_add_module(physics DEPS fixed\n  PUBLIC_HEADERS tandem.h ids.h)\n' > "$dir/CMakeLists.txt"
   printf '#include "physics/ids.h"\n' > "$dir/physics/$k_state_interface"
   printf '#include "physics/tandem.h"\n#include "physics/state_access.h"\n' > "$dir/replay/good.cpp"
-  printf '#include "physics/world.h"\n' > "$dir/replay/rollback_internal.h"
   if ! lint "$dir" > /dev/null; then
     echo "self-test: clean tree refused"
     lint "$dir" || true
@@ -95,12 +83,10 @@ self_test() {
     echo "$out"
     return 1
   fi
-  rm "$dir/replay/rollback_internal.h" "$dir/replay/bad.h"
+  rm "$dir/replay/bad.h"
   sed -i '2d' "$dir/physics/$k_state_interface"
-  out=$(lint "$dir" || true)
-  if [[ $out != *"replay/rollback_internal.h: listed as allowed"* ]]; then
-    echo "self-test: a vanished allowed file was not reported:"
-    echo "$out"
+  if ! lint "$dir" > /dev/null; then
+    echo "self-test: the tree with the violations removed was refused"
     return 1
   fi
   echo "self-test passed"

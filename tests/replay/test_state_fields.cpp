@@ -4,8 +4,9 @@
 // (or removed from) a physics record: add it to its visit_* function in
 // physics/state_fields.h (portable image, hash, decode, diff; bump the
 // format version if the bytes change) and to the compact rollback image
-// (replay/rollback.cpp, rollback_restore.cpp) — or, for per-step scratch
-// that is not state, say so next to the field — then update the size here.
+// (physics/state_compact.cpp, state_compact_restore.cpp: packed, carried
+// beside the image or recomputed) — or, for per-step scratch that is not
+// state, say so next to the field — then update the size here.
 #include <catch2/catch.hpp>
 
 #include <cstdint>

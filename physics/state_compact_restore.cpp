@@ -1,5 +1,7 @@
-// rollback_restore.cpp — checking and restoring a compact rollback image
-// (rollback.h; the layout is in rollback.cpp).
+// state_compact_restore.cpp — checking and applying the records of a compact
+// rollback image (replay/rollback.h; the layout is in state_compact.cpp;
+// replay checks the header and calls check_compact_records, then
+// apply_compact_records, through physics/state_access.h).
 //
 // DESIGN. One decoder runs twice over the image. The first pass (Apply =
 // false) checks everything — bytes left, enums, indices, cross references,
@@ -8,16 +10,15 @@
 // one needs no scratch copy of the world. Bounds are checked once per record
 // (its length follows from its flag bytes), then its fields are read with
 // plain little-endian loads; the rare sections with many fields (world
-// settings, full contacts, joints, joint events) go through the portable
-// format's ReadVisitor, so their checks and messages are the same.
+// settings, full contacts, joints, joint events) run the field lists of
+// state_fields.h with a checking FieldReader (state_compact.h).
 // Messages: "rollback_restore: offset N: body 12 position.x 3e6 m is outside
 // [-2000000, 2000000] m".
-#include "replay/rollback_internal.h"
+#include "physics/state_compact.h"
 
-namespace tandem {
+namespace tandem::state_access {
 
-using namespace state_detail;
-using namespace rollback_detail;
+using namespace compact_detail;
 
 namespace {
 
@@ -68,29 +69,21 @@ size_t shape_record_bytes(uint8_t bits) {
 template <bool Apply>
 class Decoder {
  public:
-  Decoder(const RollbackBuffer& buf, World* w)
-      : buf_(buf), data_(buf.image.data()), size_(buf.image.size()), w_(w), sc_(scratch()) {}
+  Decoder(const uint8_t* data, size_t size, size_t from, CompactStructureView st, World* w)
+      : masses_(*st.masses), geometries_(*st.geometries), data_(data), size_(size), from_(from), w_(w),
+        sc_(scratch()) {}
 
-  Status run() {
+  /// Decodes (checks, or applies) the records; the error when refused.
+  const std::string& run() {
+    pos_ = from_;
     if (!Apply) {
-      if (!need(k_hashed_from, "header (magic, version, broad-phase kind)")) return status();
-      if (std::memcmp(data_, k_rollback_magic, 4) != 0) {
-        fail(0, "expected magic \"TNDR\" (a compact rollback image)");
-        return status();
-      }
-      pos_ = 4;
-      const uint32_t version = u32();
-      if (version != k_rollback_format_version) {
-        fail(4, "expected rollback format version " + std::to_string(k_rollback_format_version) + ", got " +
-                    std::to_string(version));
-        return status();
-      }
-      if (data_[k_kind_offset] > static_cast<uint8_t>(BroadPhaseKind::tree)) {
-        fail(k_kind_offset, "expected a broad-phase kind 0..3, got " + std::to_string(data_[k_kind_offset]));
-        return status();
+      if (!need(1, "broad-phase kind")) return error_;
+      if (data_[from_] > static_cast<uint8_t>(BroadPhaseKind::tree)) {
+        fail(from_, "expected a broad-phase kind 0..3, got " + std::to_string(data_[from_]));
+        return error_;
       }
     }
-    pos_ = k_hashed_from;
+    pos_ = from_ + 1;
     world();
     if (ok()) pool(Apply ? &w_->body_pool : nullptr, "body_slot", k_max_bodies, &sc_.body_alive);
     if (ok()) bodies();
@@ -102,17 +95,14 @@ class Decoder {
     if (ok() && pos_ != size_) {
       fail(pos_, "expected the end of the image, " + std::to_string(size_ - pos_) + " bytes left over");
     }
-    if (ok() && Apply) finish();
-    return status();
+    if (ok() && Apply) rebuild_after_restore(w_);
+    return error_;
   }
+  const std::string& run_error() const { return error_; }
 
  private:
   // --- reading -------------------------------------------------------------
   bool ok() const { return error_.empty(); }
-  Status status() const {
-    if (ok()) return Status{};
-    return make_status(StatusCode::invalid_argument, "rollback_restore: " + error_);
-  }
   void context(const char* kind, int64_t index = -1) {
     kind_ = kind;
     index_ = index;
@@ -184,21 +174,17 @@ class Decoder {
     m += unit;
     fail(at, m);
   }
-  /// Runs the portable format's ReadVisitor at the current offset (same
-  /// checks and messages as the portable restore, offsets absolute).
+  /// Reads a record kept whole with the checking FieldReader at the
+  /// current offset (offsets in its messages absolute).
   template <typename F>
   void visited(F&& f) {
-    ByteReader br(data_, size_);
-    br.bytes(pos_, "");
-    br.set_context(kind_, index_);
-    ReadVisitor rv{&br, nullptr};
-    FieldsOf<true> v{rv};
-    f(v);
-    if (!br.ok()) {
-      if (ok()) error_ = br.error();
+    FieldReader r{data_, size_, pos_, kind_, index_, {}};
+    f(r);
+    if (!r.ok()) {
+      if (ok()) error_ = std::move(r.error);
       return;
     }
-    pos_ = br.offset();
+    pos_ = r.pos;
   }
 
   // --- sections ------------------------------------------------------------
@@ -216,7 +202,7 @@ class Decoder {
     const int32_t cookie = w_->def.internal_cookie;
     w_->def = def;
     w_->def.internal_cookie = cookie;
-    w_->def.broad_phase = static_cast<BroadPhaseKind>(data_[k_kind_offset]);
+    w_->def.broad_phase = static_cast<BroadPhaseKind>(data_[from_]);
     w_->step_count = steps;
     w_->last_solver_body_count = solver_bodies;
   }
@@ -269,11 +255,12 @@ class Decoder {
   void read_pairs(std::vector<PairRecord>* out, const char* kind);
   void pairs();
   void joints();
-  void finish();
 
-  const RollbackBuffer& buf_;
+  const std::vector<RollbackBodyMass>& masses_;
+  const std::vector<ShapeGeometry>& geometries_;
   const uint8_t* data_;
   size_t size_;
+  size_t from_;
   size_t pos_ = 0;
   World* w_;
   Scratch& sc_;
@@ -286,8 +273,8 @@ template <bool Apply>
 void Decoder<Apply>::bodies() {
   const size_t cap = sc_.body_alive.size();
   if (!Apply) {
-    if (buf_.masses.size() < cap) {
-      fail(pos_, "the buffer's body masses hold " + std::to_string(buf_.masses.size()) + " entries, the image needs " +
+    if (masses_.size() < cap) {
+      fail(pos_, "the buffer's body masses hold " + std::to_string(masses_.size()) + " entries, the image needs " +
                      std::to_string(cap));
       return;
     }
@@ -386,7 +373,7 @@ void Decoder<Apply>::bodies() {
       sc_.body_simulated[i] = moving && awake && enabled ? 1 : 0;
       continue;
     }
-    const RollbackBodyMass& m = buf_.masses[i];
+    const RollbackBodyMass& m = masses_[i];
     Body& b = w_->bodies[i];
     b.type = static_cast<BodyType>(type);
     b.head_shape = k_null_index;
@@ -424,8 +411,8 @@ void Decoder<Apply>::shapes() {
   const size_t cap = sc_.shape_alive.size();
   const size_t body_cap = sc_.body_alive.size();
   if (!Apply) {
-    if (buf_.geometries.size() < cap) {
-      fail(pos_, "the buffer's geometries hold " + std::to_string(buf_.geometries.size()) +
+    if (geometries_.size() < cap) {
+      fail(pos_, "the buffer's geometries hold " + std::to_string(geometries_.size()) +
                      " entries, the image needs " + std::to_string(cap));
       return;
     }
@@ -455,7 +442,7 @@ void Decoder<Apply>::shapes() {
         fail(at, "body " + std::to_string(body) + " is not a live body");
         return;
       }
-      const ShapeGeometry& g = buf_.geometries[i];
+      const ShapeGeometry& g = geometries_[i];
       if (type > static_cast<uint8_t>(ShapeType::chain_segment) || static_cast<uint8_t>(g.type) != type ||
           (g.type == ShapeType::polygon && (g.polygon.count < 3 || g.polygon.count > k_max_polygon_vertices))) {
         fail(at + 4, "type " + std::to_string(type) + " does not match the buffer's geometry (type " +
@@ -500,7 +487,7 @@ void Decoder<Apply>::shapes() {
     s.user_data = user;
     s.is_sensor = (bits & k_shape_sensor) != 0;
     s.enable_hit_events = (bits & k_shape_hit_events) != 0;
-    copy_geometry(buf_.geometries[i], &w_->shape_geometries[i]);
+    copy_geometry(geometries_[i], &w_->shape_geometries[i]);
     // Shape lists run in ascending shape index.
     Body& b = w_->bodies[static_cast<size_t>(body)];
     int32_t& tail = sc_.tail[static_cast<size_t>(body)];
@@ -699,11 +686,9 @@ void Decoder<Apply>::joints() {
       if (first_joint_field_out_of_range(j, &bad)) {
         // The field's offset inside the record, found by walking the visitor.
         Joint copy = j;
-        const size_t field_at = at + field_offset_in(bad.field, [&](OffsetVisitor& ov) {
-                                  FieldsOf<false> f{ov};
-                                  visit_joint(f, copy);
-                                });
-        refuse_range(field_at, bad.field, bad.value, bad.lo, bad.hi, bad.unit);
+        FieldOffset offset{bad.field};
+        visit_joint(offset, copy);
+        refuse_range(at + offset.at, bad.field, bad.value, bad.lo, bad.hi, bad.unit);
         return;
       }
       if (j.lower > j.upper) {
@@ -736,23 +721,21 @@ void Decoder<Apply>::joints() {
   }
 }
 
-/// What every restore does after replacing the records (as commit_image).
-template <bool Apply>
-void Decoder<Apply>::finish() {
-  state_access::rebuild_after_restore(w_);
-}
-
 }  // namespace
 
-Status rollback_restore(WorldId world, const RollbackBuffer& buffer) {
-  World* w = nullptr;
-  Status s = resolve_world(world, "rollback_restore", true, &w);
-  if (!s.ok()) return s;
-  s = Decoder<false>(buffer, nullptr).run();
-  if (!s.ok()) return s;
-  s = Decoder<true>(buffer, w).run();
-  TANDEM_ASSERT(s.ok());
-  return s;
+bool check_compact_records(const uint8_t* image, size_t size, size_t from, CompactStructureView structure,
+                           std::string* error) {
+  Decoder<false> check(image, size, from, structure, nullptr);
+  if (check.run().empty()) return true;
+  *error = check.run_error();
+  return false;
 }
 
-}  // namespace tandem
+void apply_compact_records(WorldState& world, const uint8_t* image, size_t size, size_t from,
+                           CompactStructureView structure) {
+  Decoder<true> apply(image, size, from, structure, &as_world(world));
+  [[maybe_unused]] const bool ok = apply.run().empty();
+  TANDEM_ASSERT(ok);
+}
+
+}  // namespace tandem::state_access
