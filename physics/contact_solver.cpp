@@ -403,6 +403,7 @@ bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_
   o.vet(vb.y);
   o.vet(wa);
   o.vet(wb);
+  const bool same_mass = cc.inv_mass_a == cc.inv_mass_b;  // m_B⁻¹·p = m_A⁻¹·p: computed once
   for (int32_t j = 0; j < cc.point_count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
     if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
@@ -410,9 +411,11 @@ bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_
                  o.sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
     const Q32 spin_a = o.sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
     const Q32 spin_b = o.sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
-    va = {o.sub(va.x, o.mul(cc.inv_mass_a, p.x)), o.sub(va.y, o.mul(cc.inv_mass_a, p.y))};
+    const Vec2 pa = {o.mul(cc.inv_mass_a, p.x), o.mul(cc.inv_mass_a, p.y)};
+    const Vec2 pb = same_mass ? pa : Vec2{o.mul(cc.inv_mass_b, p.x), o.mul(cc.inv_mass_b, p.y)};
+    va = {o.sub(va.x, pa.x), o.sub(va.y, pa.y)};
     wa = o.sub(wa, spin_a);
-    vb = {o.add(vb.x, o.mul(cc.inv_mass_b, p.x)), o.add(vb.y, o.mul(cc.inv_mass_b, p.y))};
+    vb = {o.add(vb.x, pb.x), o.add(vb.y, pb.y)};
     wb = o.add(wb, spin_b);
   }
   if (!o.clean()) return false;
@@ -510,11 +513,21 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
     dc = {o.sub(b.center.x, a.center.x), o.sub(b.center.y, a.center.y)};
   }
   if constexpr (use_bias) o.vet(cc.kick);
+  // Equal inverse masses (a pile of equal bodies): m_B⁻¹λ = m_A⁻¹λ and its
+  // products with d are the same values, computed once (the witness ORs the
+  // same contributions either way).
+  const bool same_mass = ma == mb;
   const auto apply = [&](Q32 impulse, Vec2 d, Q32 angular_a, Q32 angular_b) {
-    const Q32 ka = o.mul(ma, impulse), kb = o.mul(mb, impulse);
-    va = {o.sub(va.x, o.mul(ka, d.x)), o.sub(va.y, o.mul(ka, d.y))};
+    const Q32 ka = o.mul(ma, impulse);
+    const Vec2 pa = {o.mul(ka, d.x), o.mul(ka, d.y)};
+    Vec2 pb = pa;
+    if (!same_mass) {
+      const Q32 kb = o.mul(mb, impulse);
+      pb = {o.mul(kb, d.x), o.mul(kb, d.y)};
+    }
+    va = {o.sub(va.x, pa.x), o.sub(va.y, pa.y)};
     wa = o.sub(wa, o.mul(impulse, angular_a));
-    vb = {o.add(vb.x, o.mul(kb, d.x)), o.add(vb.y, o.mul(kb, d.y))};
+    vb = {o.add(vb.x, pb.x), o.add(vb.y, pb.y)};
     wb = o.add(wb, o.mul(impulse, angular_b));
   };
   // relative_velocity's formula: sum4 of dv·d and ω_B (r_B × d) − ω_A (r_A × d).
@@ -577,12 +590,14 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
     if (bouncing || !touching) {
       // Rigid, impulse scale 0. Speculative (only in the solve pass): only
       // stop it reaching the surface.
-      const Q32 bias = bouncing ? -p.bounce_velocity : s * context->inv_h;
+      const Q32 bias = bouncing ? -p.bounce_velocity : o.mul(s, context->inv_h);
       o.vet(bias);
       impulse = o.sub(Q32::zero(), o.mul(cp.normal_mass, o.add(vn, bias)));
       if (use_bias && !bouncing && !active) impulse = min(impulse, Q32::zero());
     } else if constexpr (use_bias) {
-      const Q32 bias = max(cc.softness.bias_rate * s, -context->max_push_speed);
+      // o.mul is fixed.h's product (the same rounding and saturation) under
+      // the witness.
+      const Q32 bias = max(o.mul(cc.softness.bias_rate, s), -context->max_push_speed);
       o.vet(bias);
       impulse = o.sub(o.sub(Q32::zero(), o.mul(cp.soft_normal_mass, o.add(vn, bias))),
                       o.mul(cc.softness.impulse_scale, p.normal_impulse));
