@@ -41,6 +41,10 @@
 //                     this sub-step, two more relax passes run over the
 //                     constraints of bodies involved in a bounce (so a bounce
 //                     inside a touching group settles to the elastic answer).
+//                     Each point's separation computed here is stored: the
+//                     poses do not change again before the next sub-step's
+//                     solve, which (with the bounce relax passes) reads it
+//                     instead of recomputing it (see solve_constraint_with).
 // AFTER THE SUB-STEPS: no restitution pass (Box2D v3's end-of-step pass uses
 // the velocity at prepare and loses a third of a dropped ball's energy); a
 // point that bounced in the last sub-step stores a zero normal impulse.
@@ -449,14 +453,13 @@ enum class Pass { solve, relax, relax_bounce };
 
 /// The current separation of a point, (c_B + R_B·l_B − c_A − R_A·l_A)·n +
 /// adjusted separation, each rotation component and the dot rounded once.
+/// neg_sa, neg_sb: 0 − sin of each rotation, computed once per constraint.
 template <typename Ops>
 inline Q32 current_separation(const ContactConstraintPoint& cp, const BodyState& a, const BodyState& b, Vec2 dc,
-                              Vec2 n, Ops& o) {
-  const auto rotate = [&o](Rot q, Vec2 v) {
-    return Vec2{o.sum2(q.c, v.x, o.sub(Q32::zero(), q.s), v.y), o.sum2(q.s, v.x, q.c, v.y)};
-  };
+                              Q32 neg_sa, Q32 neg_sb, Vec2 n, Ops& o) {
+  const auto rotate = [&o](Rot q, Q32 neg_s, Vec2 v) { return Vec2{o.sum2(q.c, v.x, neg_s, v.y), o.sum2(q.s, v.x, q.c, v.y)}; };
   o.vet(cp.adjusted_separation);
-  const Vec2 rb = rotate(b.rotation, cp.local_b), ra = rotate(a.rotation, cp.local_a);
+  const Vec2 rb = rotate(b.rotation, neg_sb, cp.local_b), ra = rotate(a.rotation, neg_sa, cp.local_a);
   const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
   return o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
 }
@@ -489,6 +492,7 @@ inline Q32 current_separation(const ContactConstraintPoint& cp, const BodyState&
 template <Pass pass, typename Ops>
 bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) {
   constexpr bool use_bias = pass == Pass::solve;
+  const int32_t count = cc.point_count;
   const int32_t k = context->sub_step_index;
   const bool fresh_separation = pass == Pass::relax || (pass == Pass::solve && k == 0);
   BodyState* states = context->states;
@@ -505,12 +509,15 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
   o.vet(wa);
   o.vet(wb);
   Vec2 dc{};
+  Q32 neg_sa{}, neg_sb{};
   if (fresh_separation) {
     o.vet(a.center.x);
     o.vet(a.center.y);
     o.vet(b.center.x);
     o.vet(b.center.y);
     dc = {o.sub(b.center.x, a.center.x), o.sub(b.center.y, a.center.y)};
+    neg_sa = o.sub(Q32::zero(), a.rotation.s);
+    neg_sb = o.sub(Q32::zero(), b.rotation.s);
   }
   if constexpr (use_bias) o.vet(cc.kick);
   // Equal inverse masses (a pile of equal bodies): m_B⁻¹λ = m_A⁻¹λ and its
@@ -543,14 +550,14 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
   bool skip[2] = {false, false};
   bool bounced = false;
 
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     const ContactConstraintPoint& cp = cc.points[j];
     PointState& p = ps[j];
     p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.separation, cp.active_sub_step,
          cp.bounce_sub_step};
     Q32 s;
     if (fresh_separation) {
-      s = current_separation(cp, a, b, dc, n, o);
+      s = current_separation(cp, a, b, dc, neg_sa, neg_sb, n, o);
       p.separation = s;
     } else {
       s = p.separation;
@@ -558,7 +565,8 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
       {
         SaturatingOps check;
         const Vec2 check_dc = {check.sub(b.center.x, a.center.x), check.sub(b.center.y, a.center.y)};
-        TANDEM_ASSERT(current_separation(cp, a, b, check_dc, n, check) == s);
+        const Q32 check_sa = check.sub(Q32::zero(), a.rotation.s), check_sb = check.sub(Q32::zero(), b.rotation.s);
+        TANDEM_ASSERT(current_separation(cp, a, b, check_dc, check_sa, check_sb, n, check) == s);
       }
 #endif
       if constexpr (use_bias) o.vet(s);  // an add operand below (relax passes only compare it)
@@ -610,7 +618,7 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
     apply(impulse, n, cp.angular_n_a, cp.angular_n_b);
   }
 
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     if (skip[j]) continue;
     const ContactConstraintPoint& cp = cc.points[j];
     PointState& p = ps[j];
@@ -624,7 +632,7 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) 
   }
 
   if (!o.clean()) return false;
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
     const PointState& p = ps[j];
     cp.normal_impulse = p.normal_impulse;
