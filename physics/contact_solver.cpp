@@ -41,6 +41,10 @@
 //                     this sub-step, two more relax passes run over the
 //                     constraints of bodies involved in a bounce (so a bounce
 //                     inside a touching group settles to the elastic answer).
+//                     Each point's separation computed here is stored: the
+//                     poses do not change again before the next sub-step's
+//                     solve, which (with the bounce relax passes) reads it
+//                     instead of recomputing it (see solve_constraint_with).
 // AFTER THE SUB-STEPS: no restitution pass (Box2D v3's end-of-step pass uses
 // the velocity at prepare and loses a third of a dropped ball's energy); a
 // point that bounced in the last sub-step stores a zero normal impulse.
@@ -382,23 +386,28 @@ void record_contact_approach(StepContext* context) {
 
 namespace {
 
+/// The body a constraint side reads when it has no solver body: zero
+/// velocity at the origin, the identity rotation. Never written (such a
+/// side has zero inverse mass and inertia, so store_velocity skips it).
+constexpr BodyState k_no_body{};
+
 /// Warm start of one constraint with the arithmetic of Ops: the bodies are
 /// written only if ops.clean() holds at the end; returns whether they were.
 /// (Zeroing a bounced point's impulse does not depend on the arithmetic.)
 template <typename Ops>
 bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_t previous, Ops& o) {
-  BodyState dummy_a{}, dummy_b{};
-  BodyState* a = body_state(states, cc.solver_a, &dummy_a);
-  BodyState* b = body_state(states, cc.solver_b, &dummy_b);
+  const BodyState& a = cc.solver_a >= 0 ? states[cc.solver_a] : k_no_body;
+  const BodyState& b = cc.solver_b >= 0 ? states[cc.solver_b] : k_no_body;
   const Vec2 n = cc.normal, t = right_perp(n);
-  Vec2 va = a->linear_velocity, vb = b->linear_velocity;
-  Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+  Vec2 va = a.linear_velocity, vb = b.linear_velocity;
+  Q32 wa = a.angular_velocity, wb = b.angular_velocity;
   o.vet(va.x);
   o.vet(va.y);
   o.vet(vb.x);
   o.vet(vb.y);
   o.vet(wa);
   o.vet(wb);
+  const bool same_mass = cc.inv_mass_a == cc.inv_mass_b;  // m_B⁻¹·p = m_A⁻¹·p: computed once
   for (int32_t j = 0; j < cc.point_count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
     if (cp.bounce_sub_step >= 0 && cp.bounce_sub_step == previous) cp.normal_impulse = Q32::zero();
@@ -406,14 +415,16 @@ bool warm_start_constraint_with(ContactConstraint& cc, BodyState* states, int32_
                  o.sum2(cp.normal_impulse, n.y, cp.tangent_impulse, t.y)};
     const Q32 spin_a = o.sum2(cp.normal_impulse, cp.angular_n_a, cp.tangent_impulse, cp.angular_t_a);
     const Q32 spin_b = o.sum2(cp.normal_impulse, cp.angular_n_b, cp.tangent_impulse, cp.angular_t_b);
-    va = {o.sub(va.x, o.mul(cc.inv_mass_a, p.x)), o.sub(va.y, o.mul(cc.inv_mass_a, p.y))};
+    const Vec2 pa = {o.mul(cc.inv_mass_a, p.x), o.mul(cc.inv_mass_a, p.y)};
+    const Vec2 pb = same_mass ? pa : Vec2{o.mul(cc.inv_mass_b, p.x), o.mul(cc.inv_mass_b, p.y)};
+    va = {o.sub(va.x, pa.x), o.sub(va.y, pa.y)};
     wa = o.sub(wa, spin_a);
-    vb = {o.add(vb.x, o.mul(cc.inv_mass_b, p.x)), o.add(vb.y, o.mul(cc.inv_mass_b, p.y))};
+    vb = {o.add(vb.x, pb.x), o.add(vb.y, pb.y)};
     wb = o.add(wb, spin_b);
   }
   if (!o.clean()) return false;
-  store_velocity(a, va, wa, cc.inv_mass_a, cc.inv_inertia_a);
-  store_velocity(b, vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
+  if (cc.solver_a >= 0) store_velocity(&states[cc.solver_a], va, wa, cc.inv_mass_a, cc.inv_inertia_a);
+  if (cc.solver_b >= 0) store_velocity(&states[cc.solver_b], vb, wb, cc.inv_mass_b, cc.inv_inertia_b);
   return true;
 }
 
@@ -436,41 +447,94 @@ void warm_start_contacts(StepContext* context) {
 
 namespace {
 
-/// One pass over one constraint with the arithmetic of Ops. use_bias: the
-/// biased solve (latches bounces, soft push); otherwise a relax pass.
+/// Which pass solve_constraint_with runs: the biased solve (latches
+/// bounces, soft push), the relax pass, or one of the bounce relax passes.
+enum class Pass { solve, relax, relax_bounce };
+
+/// The current separation of a point, (c_B + R_B·l_B − c_A − R_A·l_A)·n +
+/// adjusted separation, each rotation component and the dot rounded once.
+/// neg_sa, neg_sb: 0 − sin of each rotation, computed once per constraint.
+template <typename Ops>
+inline Q32 current_separation(const ContactConstraintPoint& cp, const BodyState& a, const BodyState& b, Vec2 dc,
+                              Q32 neg_sa, Q32 neg_sb, Vec2 n, Ops& o) {
+  const auto rotate = [&o](Rot q, Q32 neg_s, Vec2 v) { return Vec2{o.sum2(q.c, v.x, neg_s, v.y), o.sum2(q.s, v.x, q.c, v.y)}; };
+  o.vet(cp.adjusted_separation);
+  const Vec2 rb = rotate(b.rotation, neg_sb, cp.local_b), ra = rotate(a.rotation, neg_sa, cp.local_a);
+  const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
+  return o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
+}
+
+/// One pass over one constraint with the arithmetic of Ops.
 /// Nothing is written (constraint points, bodies, bounce marks) unless
 /// ops.clean() holds at the end; returns whether it wrote.
-template <typename Ops>
-bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use_bias, Ops& o) {
-  BodyState dummy_a{}, dummy_b{};
-  BodyState* a = body_state(context->states, cc.solver_a, &dummy_a);
-  BodyState* b = body_state(context->states, cc.solver_b, &dummy_b);
+///
+/// The separation s of a point depends only on the poses (centres and
+/// rotations), and only stage_integrate_positions changes them inside the
+/// sub-steps (between the solve and the relax of a sub-step; world.cpp's
+/// stage list). So the s a relax pass computes is bit for bit the s of the
+/// bounce relax passes of the same sub-step and of the next sub-step's
+/// solve: the relax stores it (cp.separation) and those passes read it
+/// instead of paying two rotations and a dot per point again (debug builds
+/// recompute it and assert the equality). Only sub-step 0's solve and the
+/// relax compute it.
+///
+/// Identities used (exact in both arithmetics, so the same bits as the
+/// general formula impulse = −m·(vn + bias) − scale·λ): where the impulse
+/// scale is 0 (a bounce, a speculative point, every relax pass) the term
+/// "− 0·λ" is dropped (0·λ = 0 exactly, and x − 0 = x because no operation
+/// here returns the raw minimum, the one value "− 0" would change: the
+/// roundings and subtractions saturate to ±(2^63 − 1), and under a clean
+/// witness |x| < 2^62); a touching point in a relax pass has bias 0 and
+/// vn + 0 = vn (vn is a rounding, never the raw minimum). An operation whose
+/// result is not used (the "about to touch" test in a relax pass) is not
+/// computed: the witness only has to cover the operations that reach a
+/// stored value.
+template <Pass pass, typename Ops>
+bool solve_constraint_with(ContactConstraint& cc, StepContext* context, Ops& o) {
+  constexpr bool use_bias = pass == Pass::solve;
+  const int32_t count = cc.point_count;
   const int32_t k = context->sub_step_index;
-  const Q32 h = context->h;
+  const bool fresh_separation = pass == Pass::relax || (pass == Pass::solve && k == 0);
+  BodyState* states = context->states;
+  const BodyState& a = cc.solver_a >= 0 ? states[cc.solver_a] : k_no_body;
+  const BodyState& b = cc.solver_b >= 0 ? states[cc.solver_b] : k_no_body;
   const Vec2 n = cc.normal, t = right_perp(n);
   const Q32 ma = cc.inv_mass_a, mb = cc.inv_mass_b;
-  Vec2 va = a->linear_velocity, vb = b->linear_velocity;
-  Q32 wa = a->angular_velocity, wb = b->angular_velocity;
+  Vec2 va = a.linear_velocity, vb = b.linear_velocity;
+  Q32 wa = a.angular_velocity, wb = b.angular_velocity;
   o.vet(va.x);
   o.vet(va.y);
   o.vet(vb.x);
   o.vet(vb.y);
   o.vet(wa);
   o.vet(wb);
-  o.vet(a->center.x);
-  o.vet(a->center.y);
-  o.vet(b->center.x);
-  o.vet(b->center.y);
-  o.vet(cc.kick);
-  const Vec2 dc = {o.sub(b->center.x, a->center.x), o.sub(b->center.y, a->center.y)};
-  const auto rotate = [&o](Rot q, Vec2 v) {
-    return Vec2{o.sum2(q.c, v.x, o.sub(Q32::zero(), q.s), v.y), o.sum2(q.s, v.x, q.c, v.y)};
-  };
+  Vec2 dc{};
+  Q32 neg_sa{}, neg_sb{};
+  if (fresh_separation) {
+    o.vet(a.center.x);
+    o.vet(a.center.y);
+    o.vet(b.center.x);
+    o.vet(b.center.y);
+    dc = {o.sub(b.center.x, a.center.x), o.sub(b.center.y, a.center.y)};
+    neg_sa = o.sub(Q32::zero(), a.rotation.s);
+    neg_sb = o.sub(Q32::zero(), b.rotation.s);
+  }
+  if constexpr (use_bias) o.vet(cc.kick);
+  // Equal inverse masses (a pile of equal bodies): m_B⁻¹λ = m_A⁻¹λ and its
+  // products with d are the same values, computed once (the witness ORs the
+  // same contributions either way).
+  const bool same_mass = ma == mb;
   const auto apply = [&](Q32 impulse, Vec2 d, Q32 angular_a, Q32 angular_b) {
-    const Q32 ka = o.mul(ma, impulse), kb = o.mul(mb, impulse);
-    va = {o.sub(va.x, o.mul(ka, d.x)), o.sub(va.y, o.mul(ka, d.y))};
+    const Q32 ka = o.mul(ma, impulse);
+    const Vec2 pa = {o.mul(ka, d.x), o.mul(ka, d.y)};
+    Vec2 pb = pa;
+    if (!same_mass) {
+      const Q32 kb = o.mul(mb, impulse);
+      pb = {o.mul(kb, d.x), o.mul(kb, d.y)};
+    }
+    va = {o.sub(va.x, pa.x), o.sub(va.y, pa.y)};
     wa = o.sub(wa, o.mul(impulse, angular_a));
-    vb = {o.add(vb.x, o.mul(kb, d.x)), o.add(vb.y, o.mul(kb, d.y))};
+    vb = {o.add(vb.x, pb.x), o.add(vb.y, pb.y)};
     wb = o.add(wb, o.mul(impulse, angular_b));
   };
   // relative_velocity's formula: sum4 of dv·d and ω_B (r_B × d) − ω_A (r_A × d).
@@ -479,27 +543,39 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
   };
   // The points' mutable state, written back only at the end.
   struct PointState {
-    Q32 normal_impulse, tangent_impulse, bounce_velocity;
+    Q32 normal_impulse, tangent_impulse, bounce_velocity, separation;
     int32_t active_sub_step, bounce_sub_step;
   };
   PointState ps[2];
   bool skip[2] = {false, false};
   bool bounced = false;
 
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     const ContactConstraintPoint& cp = cc.points[j];
     PointState& p = ps[j];
-    p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.active_sub_step, cp.bounce_sub_step};
-    o.vet(cp.adjusted_separation);
-    o.vet(cp.approach_velocity);
-    o.vet(p.normal_impulse);
-    o.vet(p.tangent_impulse);
-    const Vec2 rb = rotate(b->rotation, cp.local_b), ra = rotate(a->rotation, cp.local_a);
-    const Vec2 d = {o.add(dc.x, o.sub(rb.x, ra.x)), o.add(dc.y, o.sub(rb.y, ra.y))};
-    const Q32 s = o.add(o.sum2(d.x, n.x, d.y, n.y), cp.adjusted_separation);
+    p = {cp.normal_impulse, cp.tangent_impulse, cp.bounce_velocity, cp.separation, cp.active_sub_step,
+         cp.bounce_sub_step};
+    Q32 s;
+    if (fresh_separation) {
+      s = current_separation(cp, a, b, dc, neg_sa, neg_sb, n, o);
+      p.separation = s;
+    } else {
+      s = p.separation;
+#ifndef NDEBUG
+      {
+        SaturatingOps check;
+        const Vec2 check_dc = {check.sub(b.center.x, a.center.x), check.sub(b.center.y, a.center.y)};
+        const Q32 check_sa = check.sub(Q32::zero(), a.rotation.s), check_sb = check.sub(Q32::zero(), b.rotation.s);
+        TANDEM_ASSERT(current_separation(cp, a, b, check_dc, check_sa, check_sb, n, check) == s);
+      }
+#endif
+      if constexpr (use_bias) o.vet(s);  // an add operand below (relax passes only compare it)
+    }
     const bool touching = s <= Q32::zero();
-    const bool active = touching || o.add(s, o.mul(h, o.add(cp.approach_velocity, cc.kick))) < Q32::zero();
-    if (use_bias) {
+    bool active = touching;
+    if constexpr (use_bias) {
+      o.vet(cp.approach_velocity);
+      active = touching || o.add(s, o.mul(context->h, o.add(cp.approach_velocity, cc.kick))) < Q32::zero();
       if (active) {
         p.active_sub_step = k;
         if (cc.restitution > Q32::zero() && cp.approach_velocity < -context->restitution_threshold &&
@@ -515,30 +591,34 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
       skip[j] = true;  // relax gate: speculative, or idle this sub-step
       continue;
     }
-    Q32 bias = Q32::zero();
-    Q32 mass = cp.normal_mass;
-    Q32 impulse_scale = Q32::zero();
-    if (bouncing) {
-      bias = -p.bounce_velocity;
-    } else if (!touching) {
-      bias = s * context->inv_h;  // speculative: only stop it reaching the surface
-    } else if (use_bias) {
-      bias = max(cc.softness.bias_rate * s, -context->max_push_speed);
-      mass = cp.soft_normal_mass;
-      impulse_scale = cc.softness.impulse_scale;
-    }
-    o.vet(bias);
+    o.vet(p.normal_impulse);
+    o.vet(p.tangent_impulse);
     const Q32 vn = relative(n, cp.rn_b, cp.rn_a);
-    Q32 impulse =
-        o.sub(o.sub(Q32::zero(), o.mul(mass, o.add(vn, bias))), o.mul(impulse_scale, p.normal_impulse));
-    if (use_bias && !bouncing && !touching && !active) impulse = min(impulse, Q32::zero());
+    Q32 impulse;
+    if (bouncing || !touching) {
+      // Rigid, impulse scale 0. Speculative (only in the solve pass): only
+      // stop it reaching the surface.
+      const Q32 bias = bouncing ? -p.bounce_velocity : o.mul(s, context->inv_h);
+      o.vet(bias);
+      impulse = o.sub(Q32::zero(), o.mul(cp.normal_mass, o.add(vn, bias)));
+      if (use_bias && !bouncing && !active) impulse = min(impulse, Q32::zero());
+    } else if constexpr (use_bias) {
+      // o.mul is fixed.h's product (the same rounding and saturation) under
+      // the witness.
+      const Q32 bias = max(o.mul(cc.softness.bias_rate, s), -context->max_push_speed);
+      o.vet(bias);
+      impulse = o.sub(o.sub(Q32::zero(), o.mul(cp.soft_normal_mass, o.add(vn, bias))),
+                      o.mul(cc.softness.impulse_scale, p.normal_impulse));
+    } else {
+      impulse = o.sub(Q32::zero(), o.mul(cp.normal_mass, vn));
+    }
     const Q32 accumulated = max(o.add(p.normal_impulse, impulse), Q32::zero());
     impulse = o.sub(accumulated, p.normal_impulse);
     p.normal_impulse = accumulated;
     apply(impulse, n, cp.angular_n_a, cp.angular_n_b);
   }
 
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     if (skip[j]) continue;
     const ContactConstraintPoint& cp = cc.points[j];
     PointState& p = ps[j];
@@ -552,22 +632,25 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
   }
 
   if (!o.clean()) return false;
-  for (int32_t j = 0; j < cc.point_count; ++j) {
+  for (int32_t j = 0; j < count; ++j) {
     ContactConstraintPoint& cp = cc.points[j];
     const PointState& p = ps[j];
     cp.normal_impulse = p.normal_impulse;
     cp.tangent_impulse = p.tangent_impulse;
-    cp.bounce_velocity = p.bounce_velocity;
-    cp.active_sub_step = p.active_sub_step;
-    cp.bounce_sub_step = p.bounce_sub_step;
+    if constexpr (use_bias) {
+      cp.bounce_velocity = p.bounce_velocity;
+      cp.active_sub_step = p.active_sub_step;
+      cp.bounce_sub_step = p.bounce_sub_step;
+    }
+    if (fresh_separation) cp.separation = p.separation;
   }
   if (bounced) {
     if (cc.solver_a >= 0) mark_bounce(&context->bounce_marks[cc.solver_a], k);
     if (cc.solver_b >= 0) mark_bounce(&context->bounce_marks[cc.solver_b], k);
     atomic_store_relaxed(&context->bounced_this_sub_step, true);
   }
-  store_velocity(a, va, wa, ma, cc.inv_inertia_a);
-  store_velocity(b, vb, wb, mb, cc.inv_inertia_b);
+  if (cc.solver_a >= 0) store_velocity(&states[cc.solver_a], va, wa, ma, cc.inv_inertia_a);
+  if (cc.solver_b >= 0) store_velocity(&states[cc.solver_b], vb, wb, mb, cc.inv_inertia_b);
   return true;
 }
 
@@ -576,13 +659,14 @@ bool solve_constraint_with(ContactConstraint& cc, StepContext* context, bool use
 /// result when its witness shows that nothing came near saturation (every
 /// ordinary contact); otherwise, and in every other build, the saturating
 /// arithmetic. Same bits either way.
-void solve_constraint(ContactConstraint& cc, StepContext* context, bool use_bias) {
+template <Pass pass>
+void solve_constraint(ContactConstraint& cc, StepContext* context) {
 #if TANDEM_CONTACT_WRAP_FIRST
   WrappingOps wrapping;
-  if (solve_constraint_with(cc, context, use_bias, wrapping)) return;
+  if (solve_constraint_with<pass>(cc, context, wrapping)) return;
 #endif
   SaturatingOps saturating;
-  solve_constraint_with(cc, context, use_bias, saturating);
+  solve_constraint_with<pass>(cc, context, saturating);
 }
 
 }  // namespace
@@ -591,13 +675,13 @@ void solve_contacts(StepContext* context) {
   context->bounced_this_sub_step = false;
   for_each_by_colour(
       context, "solve", [context](ContactLanes& cl) { solve_lanes<true>(cl, context, nullptr); },
-      [context](ContactConstraint& cc) { solve_constraint(cc, context, true); });
+      [context](ContactConstraint& cc) { solve_constraint<Pass::solve>(cc, context); });
 }
 
 void relax_contacts(StepContext* context) {
   for_each_by_colour(
       context, "relax", [context](ContactLanes& cl) { solve_lanes<false>(cl, context, nullptr); },
-      [context](ContactConstraint& cc) { solve_constraint(cc, context, false); });
+      [context](ContactConstraint& cc) { solve_constraint<Pass::relax>(cc, context); });
   if (!context->bounced_this_sub_step) return;
   const int32_t k = context->sub_step_index;
   const int32_t* marks = context->bounce_marks;
@@ -619,7 +703,7 @@ void relax_contacts(StepContext* context) {
         [context, marks, k](ContactConstraint& cc) {
           const bool marked =
               (cc.solver_a >= 0 && marks[cc.solver_a] == k) || (cc.solver_b >= 0 && marks[cc.solver_b] == k);
-          if (marked) solve_constraint(cc, context, false);
+          if (marked) solve_constraint<Pass::relax_bounce>(cc, context);
         });
   }
 }

@@ -77,6 +77,7 @@ struct ContactConstraintPoint {
   Q32 tangent_mass;           ///< 1/k_tangent, kg
   Q32 approach_velocity;      ///< relative normal velocity before this sub-step's gravity, m/s (< 0: closing)
   Q32 bounce_velocity;        ///< target separating speed of a latched bounce, m/s
+  Q32 separation;             ///< current separation at the last relax pass (the poses the next solve sees), m
   int32_t bounce_sub_step = -1;  ///< sub-step in which the bounce latched, or −1
   int32_t active_sub_step = -1;  ///< last sub-step whose biased solve found the point touching or about to
 };

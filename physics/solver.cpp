@@ -46,6 +46,7 @@
 // k_body_block solver bodies on any thread in any order. The only shared
 // effect, the left-bounds step flag, is gathered per block and OR-ed in block
 // order.
+#include "physics/fast_math.h"
 #include "physics/world.h"
 
 namespace tandem {
@@ -58,6 +59,21 @@ constexpr int32_t k_body_block = 64;
 
 /// Largest per-sub-step turn taken by the polynomial path, radians (1/16).
 constexpr Q32 k_small_rotation = Q32::from_raw(int64_t{1} << 28);
+
+/// vec2.h's integrate_rotation (the first-order turn and two
+/// rot_normalize_fast steps) written with fast_math.h's operations: the same
+/// rounding and the same saturation as the checked operators for every
+/// input (fast_math.h), minus the fault report, so the same bits in every
+/// build (debug, sanitizer and portable builds use the checked operators).
+inline Rot integrate_rotation_fast(Rot q, Q32 delta_angle) {
+  const auto normalize = [](Rot r) {
+    const Q32 m = fast::sum2(r.c, r.c, r.s, r.s);
+    const Q32 k = fast::sub(Q32::from_int(3), m) / 2;
+    return Rot{fast::mul(r.c, k), fast::mul(r.s, k)};
+  };
+  const Rot r{fast::sub(q.c, fast::mul(delta_angle, q.s)), fast::add(q.s, fast::mul(delta_angle, q.c))};
+  return normalize(normalize(r));
+}
 
 /// v scaled down to at most max_speed (see the file comment).
 inline Vec2 clamp_linear_speed(Vec2 v, Q32 max_speed) {
@@ -185,11 +201,12 @@ void stage_integrate_positions(World* world, StepContext* context) {
   parallel_for(context->tasks, "integrate_positions", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       BodyState& s = states[i];
-      s.center = mul_add(s.center, h, s.linear_velocity);
+      // fast::: the checked operators' bits (integrate_rotation_fast).
+      s.center = fast::mul_add(s.center, h, s.linear_velocity);
       if (s.angular_velocity == Q32::zero()) continue;
-      const Q32 delta = h * s.angular_velocity;
+      const Q32 delta = fast::mul(h, s.angular_velocity);
       if (abs(delta) <= k_small_rotation) {
-        s.rotation = integrate_rotation(s.rotation, delta);
+        s.rotation = integrate_rotation_fast(s.rotation, delta);
       } else {
         // Fast spin (rare): the exact turn, then exact normalisation.
         s.rotation = rot_normalize(mul_rot(rot_from_angle(delta), s.rotation));
