@@ -119,6 +119,33 @@ TEST_CASE("regression: bodies with chain segments stay out of static boxes (stre
   }
 }
 
+// Formerly open (README "Range and limits"): stress seed 572, a fast world in
+// which a bullet whose only solid shape is a 0.5 m segment (its 10.8 kg are a
+// sensor box below the segment) was counted as gone through the floor at
+// 14 m/s. Two causes: (1) continuous collision stopped the segment on a
+// static chain segment every step (ticks 55-78), although no contact exists
+// between two segment kinds, so nothing took its velocity away: the body
+// hung there while gravity took it to 12.8 m/s, then slipped off and hit the
+// floor; continuous.cpp now sweeps only pairs a contact can take over (no
+// two segment kinds, no one-sided chain segment from behind). (2) The
+// containment rule checked the centre of mass, which for this body lies
+// 0.55 m from the segment: resting on the floor with one end, the body
+// swung its mass 0.7 m into the floor while the segment stayed on it
+// (deepest point 0.17 m in). The rule now checks the centre of the body's
+// solid shapes (stress_world.cpp, solid_centre).
+TEST_CASE("regression: stress seed 572 stays contained (segment held on a chain segment by continuous collision)",
+          "[stress]") {
+  StressConfig config;
+  config.seed = 572;
+  config.ticks = 600;
+  config.fail_on_known_escapes = true;
+  const StressResult r = tandem::stress::run_stress_world(config);
+  INFO(tandem::stress::describe(572, r));
+  CHECK(r.ok());
+  CHECK(r.escapes == 0);
+  CHECK(r.faults == 0);
+}
+
 // Formerly KNOWN ISSUE 4: fixed-point overflows in worlds the API accepted
 // (seeds 55, 9, 94, found by the sanitizer build of scripts/stress.sh). A body
 // of tiny rotational inertia whose contact points lie far from its centre of
