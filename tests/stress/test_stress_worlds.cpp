@@ -174,13 +174,16 @@ TEST_CASE("random worlds that used to overflow (seeds 94, 55, 9, 34) compute the
   // worlds saturated (seed 94 first split g++ -O3 from the checked builds at
   // tick 512); now nothing saturates, and g++ release (native __int128, fast
   // paths), the sanitizer builds (checked operators) and the portable-int128
-  // preset (the i686/wasm32 path) must give these final hashes.
+  // preset (the i686/wasm32 path) must give these final hashes. Re-recorded
+  // 2026-11-28 when continuous collision stopped sweeping pairs no contact
+  // can take over (two segment kinds, a chain segment from behind): all four
+  // worlds have such pairs.
   struct Expected {
     uint64_t seed;
     uint64_t final_hash;
   };
-  for (const Expected& e : {Expected{94, 0xb524790839fbd9a3ull}, Expected{55, 0x1a1efef0253b878cull},
-                            Expected{9, 0xcd5c4bacad8542c2ull}, Expected{34, 0x04f544ed9264e9d7ull}}) {
+  for (const Expected& e : {Expected{94, 0xe144248ff84f4ebbull}, Expected{55, 0xa747bdedb4b4aa6aull},
+                            Expected{9, 0x90a851dc8ffcb398ull}, Expected{34, 0xcc2b65043abf280full}}) {
     StressConfig config;
     config.seed = e.seed;
     config.ticks = 600;
