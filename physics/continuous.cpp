@@ -168,6 +168,44 @@ bool may_collide(const World& world, int32_t shape_a, int32_t shape_b) {
   return shapes_should_collide(world, std::min(shape_a, shape_b), std::max(shape_a, shape_b));
 }
 
+/// True for the shape kinds without area (segments and chain segments): no
+/// contact manifold exists between two of them (manifold.cpp's dispatch, as
+/// in Box2D), so neither may stop the other here.
+bool is_segment_kind(ShapeType type) { return type == ShapeType::segment || type == ShapeType::chain_segment; }
+
+/// True when `point` (world) lies behind the one-sided chain segment `chain`
+/// placed at `xf`: on the side right_perp(point2 − point1) points away from,
+/// where the chain manifold makes no contact (Box2D v3's continuous rule:
+/// a shape that starts behind a chain segment is not stopped by it).
+bool behind_chain_segment(const ChainSegment& chain, Transform xf, Vec2 point) {
+  const Vec2 p1 = transform_point(xf, chain.segment.point1);
+  const Vec2 p2 = transform_point(xf, chain.segment.point2);
+  return dot(right_perp(p2 - p1), point - p1) < Q32::zero();
+}
+
+/// True when the continuous search may stop `geometry` (of the fast body,
+/// at its start pose `start`) at `other` (held at `other_xf`): only pairs the
+/// contact solver can take over. Two segment kinds have no manifold, and a
+/// one-sided chain segment makes no contact with a shape whose centroid is
+/// behind it; stopping the body there left it held in place by this search
+/// alone, each step, while gravity added to its velocity with no contact to
+/// take it away, until it slipped past the end and fell at that speed (stress
+/// seed 572: a segment held on a chain segment reached 13 m/s and went into
+/// the floor).
+bool contact_can_take_over(const ShapeGeometry& geometry, Transform start, const ShapeGeometry& other,
+                           Transform other_xf) {
+  if (is_segment_kind(geometry.type) && is_segment_kind(other.type)) return false;
+  if (other.type == ShapeType::chain_segment &&
+      behind_chain_segment(other.chain_segment, other_xf, transform_point(start, shape_centroid(geometry)))) {
+    return false;
+  }
+  if (geometry.type == ShapeType::chain_segment &&
+      behind_chain_segment(geometry.chain_segment, start, transform_point(other_xf, shape_centroid(other)))) {
+    return false;
+  }
+  return true;
+}
+
 /// Sweeps the body of solver index i against `candidates` (each held at its
 /// end_pose) and returns the fraction of its first impact (1 when none).
 /// Reads only: the search runs on any thread, move_to_impact applies it.
@@ -194,11 +232,16 @@ Q32 first_impact(const World* world, const StepContext* context, int32_t i, cons
       const Shape& other = world->shapes[static_cast<size_t>(o)];
       if (other.body_index == b || !aabb_overlaps(swept, other.aabb)) continue;
       if (!may_collide(*world, s, o)) continue;
+      const ShapeGeometry& other_geometry = world->shape_geometries[static_cast<size_t>(o)];
+      const Sweep other_sweep = end_pose(*world, *context, o);
+      if (!contact_can_take_over(geometry, sim.transform, other_geometry, sweep_transform(other_sweep, Q32::zero()))) {
+        continue;
+      }
       ToiInput input;
       input.proxy_a = proxy;
-      input.proxy_b = make_shape_proxy(world->shape_geometries[static_cast<size_t>(o)]);
+      input.proxy_b = make_shape_proxy(other_geometry);
       input.sweep_a = sweep;
-      input.sweep_b = end_pose(*world, *context, o);
+      input.sweep_b = other_sweep;
       input.max_fraction = best;
       ToiOutput out = time_of_impact(input);
       if (out.fraction == Q32::zero() || out.state == ToiState::overlapped) {

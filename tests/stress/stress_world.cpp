@@ -240,15 +240,17 @@ class Driver {
     for (const Tracked& t : s_.bodies) {
       if (t.kinematic || !body_is_valid(t.id) || body_type(t.id) != BodyType::dynamic_body || !body_is_enabled(t.id))
         continue;
-      if (!has_solid_shape(t.id)) continue;
-      const Vec2 c = body_world_center(t.id) - p_.center;
+      Vec2 solid;
+      if (!solid_centre(t.id, &solid)) continue;
+      const Vec2 c = solid - p_.center;
       if (abs(c.x) > limit || abs(c.y) > limit) {
         *out_chain_body = has_chain(t.id);
-        char text[256];
-        std::snprintf(text, sizeof text, "%s left the container: centre of mass (%.4f, %.4f) m from the container centre, "
-                      "walls' middle at ±%.4f m; velocity (%.3f, %.3f) m/s",
-                      describe(t.id).c_str(), c.x.to_double(), c.y.to_double(), limit.to_double(), body_linear_velocity(t.id).x.to_double(),
-                      body_linear_velocity(t.id).y.to_double());
+        const Vec2 com = body_world_center(t.id) - p_.center;
+        char text[320];
+        std::snprintf(text, sizeof text, "%s left the container: centre of its solid shapes (%.4f, %.4f) m from the container "
+                      "centre (centre of mass (%.4f, %.4f)), walls' middle at ±%.4f m; velocity (%.3f, %.3f) m/s",
+                      describe(t.id).c_str(), c.x.to_double(), c.y.to_double(), com.x.to_double(), com.y.to_double(),
+                      limit.to_double(), body_linear_velocity(t.id).x.to_double(), body_linear_velocity(t.id).y.to_double());
         std::string shapes;
         ShapeId ids[16];
         const int32_t n = body_shapes(t.id, ids, 16);
@@ -284,13 +286,27 @@ class Driver {
     return false;
   }
 
-  static bool has_solid_shape(BodyId b) {
+  static bool is_solid(ShapeId s) { return !shape_is_sensor(s) && shape_type(s) != ShapeType::chain_segment; }
+
+  /// The centre of the bounding box of the body's solid shapes (not sensors,
+  /// not chain segments): what the containment rule checks. Not the centre of
+  /// mass: sensors carry mass too, so a body's centre of mass may lie outside
+  /// everything that collides (stress seed 572: a short segment whose mass is
+  /// a sensor box below it, resting on the floor with its centre of mass
+  /// 0.7 m inside the floor). False when the body has no solid shape.
+  static bool solid_centre(BodyId b, Vec2* out) {
     ShapeId shapes[16];
     const int32_t n = body_shapes(b, shapes, 16);
+    bool any = false;
+    AABB box;
     for (int32_t i = 0; i < n && i < 16; ++i) {
-      if (!shape_is_sensor(shapes[i]) && shape_type(shapes[i]) != ShapeType::chain_segment) return true;
+      if (!is_solid(shapes[i])) continue;
+      const AABB a = shape_aabb(shapes[i]);
+      box = any ? aabb_union(box, a) : a;
+      any = true;
     }
-    return false;
+    if (any) *out = lerp(box.lower, box.upper, Q32::half());
+    return any;
   }
 
   Status make_walls() {

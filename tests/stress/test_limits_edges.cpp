@@ -111,49 +111,81 @@ TEST_CASE("limits: a stack at ±999,000 m settles as at the origin, no fault", "
   CHECK(faults.count() == 0);
 }
 
-TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked: 1:10 and 1:100 hold, larger ones sink, no fault", "[stress][limits]") {
+TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked, either way up", "[stress][limits]") {
   FaultCount faults;
-  // A 1 m box of mass M on a 1 m box of 1 kg (and, for the largest ratio,
-  // also 100 kg on 0.001 kg) resting on the ground for 10 s. Boxes of 1 m × 1 m:
-  // density = mass.
-  struct Case { Q32 light; Q32 heavy; };
-  const Case cases[] = {{1_q32, 10_q32}, {1_q32, 100_q32}, {1_q32, 1000_q32}, {1_q32, 10000_q32},
-                        {1_q32, 100000_q32}, {0.001_q32, 100_q32}};
+  // Two 1 m boxes (density = mass) stacked on a 2 m thick static ground (top
+  // face at y = 0) for 10 s: the upper one starts resting on the lower one.
+  struct Case { Q32 lower; Q32 upper; };
+  const Case cases[] = {
+      // heavy on light
+      {1_q32, 10_q32}, {1_q32, 100_q32}, {1_q32, 1000_q32}, {1_q32, 10000_q32}, {1_q32, 100000_q32},
+      {0.001_q32, 100_q32},
+      // light on heavy
+      {1000_q32, 1_q32}, {10000_q32, 1_q32}, {100000_q32, 1_q32}, {100_q32, 0.001_q32}};
   for (const Case& c : cases) {
     TestWorld w;
     static_box(w.id, Vec2{0_q32, -1_q32}, 20_q32, 1_q32);
-    const BodyId light = dynamic_box(w.id, Vec2{0_q32, 0.5_q32}, 0.5_q32, 0.5_q32, c.light);
-    const BodyId heavy = dynamic_box(w.id, Vec2{0_q32, 1.5_q32}, 0.5_q32, 0.5_q32, c.heavy);
-    const long double ratio = ld(body_mass(heavy) / body_mass(light));
-    long double lowest_light = 1e9L, lowest_gap = 1e9L;
+    const BodyId lower = dynamic_box(w.id, Vec2{0_q32, 0.5_q32}, 0.5_q32, 0.5_q32, c.lower);
+    const BodyId upper = dynamic_box(w.id, Vec2{0_q32, 1.5_q32}, 0.5_q32, 0.5_q32, c.upper);
+    const long double m_lower = ld(body_mass(lower)), m_upper = ld(body_mass(upper));
+    long double lowest_lower = 1e9L, lowest_upper = 1e9L, lowest_gap = 1e9L, widest_x = 0;
     for (int t = 0; t < 600; ++t) {
       REQUIRE(world_step(w.id, k_dt).ok());
-      lowest_light = std::min(lowest_light, ld(body_world_center(light).y));
-      lowest_gap = std::min(lowest_gap, ld(body_world_center(heavy).y) - ld(body_world_center(light).y));
+      const Vec2 pl = body_world_center(lower), pu = body_world_center(upper);
+      lowest_lower = std::min(lowest_lower, ld(pl.y));
+      lowest_upper = std::min(lowest_upper, ld(pu.y));
+      lowest_gap = std::min(lowest_gap, ld(pu.y) - ld(pl.y));
+      widest_x = std::max({widest_x, ld(abs(pl.x)), ld(abs(pu.x))});
     }
-    const long double gap = ld(body_world_center(heavy).y) - ld(body_world_center(light).y);
-    std::printf("limits: %g kg on %g kg (1:%.0Lf): light box centre lowest %.4Lf m (rest 0.5); heavy above light: "
-                "lowest %.4Lf m, final %.4Lf m (rest 1.0)\n",
-                body_mass(heavy).to_double(), body_mass(light).to_double(), ratio, lowest_light, lowest_gap, gap);
-    INFO("1:" << static_cast<double>(ratio));
-    // In every case the light box stays above the ground's middle and the
-    // heavy box ends above the ground (nothing is pushed out of the world).
-    CHECK(lowest_light > 0.35L);
-    CHECK(ld(body_world_center(heavy).y) > 0.45L);
-    if (ratio <= 10.5L) {
+    const long double gap = ld(body_world_center(upper).y) - ld(body_world_center(lower).y);
+    const long double final_lower = ld(body_world_center(lower).y), final_upper = ld(body_world_center(upper).y);
+    std::printf("limits: %g kg on %g kg: lower centre lowest %.4Lf (rest 0.5), upper lowest %.4Lf (rest 1.5); upper above "
+                "lower: lowest %.4Lf, final %.4Lf (rest 1.0); final lower %.4Lf upper %.4Lf; |x| up to %.4Lf\n",
+                static_cast<double>(m_upper), static_cast<double>(m_lower), lowest_lower, lowest_upper, lowest_gap, gap,
+                final_lower, final_upper, widest_x);
+    const long double ratio = m_upper / m_lower;
+    INFO(static_cast<double>(m_upper) << " kg on " << static_cast<double>(m_lower) << " kg");
+    if (ratio < 1) {
+      // Light on heavy, 1:1,000 to 1:100,000: holds as equal masses do, the
+      // boxes 1.000 ± 0.001 m apart, the lower one 0.001 m from its rest.
+      CHECK(lowest_gap == Approx(1.0L).margin(0.001L));
+      CHECK(gap == Approx(1.0L).margin(0.001L));
+      CHECK(lowest_lower > 0.499L);
+      CHECK(widest_x < 0.001L);
+    } else if (ratio <= 10.5L) {
       // 1:10 holds: the heavy box rests on the light one within 1 cm.
       CHECK(gap == Approx(1.0L).margin(0.01L));
-      CHECK(lowest_light > 0.49L);
+      CHECK(lowest_lower > 0.49L);
     } else if (ratio <= 100.5L) {
-      // 1:100 holds with the boxes overlapping by 0.04 m (gap 0.96 m).
+      // 1:100 holds with the boxes overlapping by 0.04 m (0.96 ± 0.005 m apart).
       CHECK(gap == Approx(0.96L).margin(0.005L));
-      CHECK(lowest_light > 0.49L);
+      CHECK(lowest_lower > 0.49L);
+    } else if (ratio <= 1000.5L) {
+      // 1:1,000: the soft contact gives way and the heavy box sinks 0.85 m
+      // into the light one (its centre 0.15 ± 0.01 m above the light one's
+      // at the lowest) and squeezes it out sideways; they end 0.65 ± 0.01 m
+      // apart vertically, one of them pushed up to 0.35 ± 0.01 m sideways.
+      // The order holds.
+      CHECK(lowest_gap == Approx(0.15L).margin(0.01L));
+      CHECK(gap == Approx(0.65L).margin(0.01L));
+      CHECK(widest_x == Approx(0.35L).margin(0.01L));
     } else {
-      // From 1:1,000 the soft contact gives way: the heavy box sinks into
-      // (1:1,000) or through (1:10,000 and beyond) the light one. A limit of
-      // the soft-step solver, stated in the README's range table.
-      CHECK(gap < 0.7L);
+      // 1:10,000 and 1:100,000 (also 100 kg on 0.001 kg): the heavy box
+      // passes through the light one (its centre up to 0.19 m below the
+      // light one's: the order swaps) and both end side by side on the
+      // ground, centres at 0.500 ± 0.001 m, one of them pushed 1.00 ± 0.01 m
+      // sideways.
+      CHECK(lowest_gap < -0.19L);
+      CHECK(gap == Approx(0.0L).margin(0.001L));
+      CHECK(final_lower == Approx(0.5L).margin(0.001L));
+      CHECK(final_upper == Approx(0.5L).margin(0.001L));
+      CHECK(widest_x == Approx(1.0L).margin(0.01L));
     }
+    // Nothing goes through the ground: the lower box's centre stays above
+    // 0.39 m (pressed at most 0.11 m into the ground), the upper one's above
+    // 0.48 m.
+    CHECK(lowest_lower > 0.39L);
+    CHECK(lowest_upper > 0.48L);
   }
   CHECK(faults.count() == 0);
 }
