@@ -249,7 +249,13 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
     const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
     ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
-    cc = ContactConstraint{};
+    // Every field is written below (no zeroing pass over the 448-byte
+    // record first): the header here, each used point in the loop, an
+    // unused second point zeroed as a whole. A field added to either struct
+    // must be written here too: the sizes are asserted so that a merge that
+    // adds one stops at this line.
+    static_assert(sizeof(ContactConstraintPoint) == 168 && sizeof(ContactConstraint) == 448,
+                  "prepare_contact_constraints writes every field of ContactConstraint: add the new field there");
     cc.solver_a = ia;
     cc.solver_b = ib;
     cc.contact_index = static_cast<int32_t>(ci);
@@ -258,6 +264,10 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     cc.friction = c.friction;
     cc.restitution = c.restitution;
     Vec2 dv_a{}, dv_b{};
+    cc.inv_mass_a = Q32::zero();
+    cc.inv_inertia_a = Q32::zero();
+    cc.inv_mass_b = Q32::zero();
+    cc.inv_inertia_b = Q32::zero();
     if (ia >= 0) {
       const SolverBodyParams& p = context->params[ia];
       cc.inv_mass_a = p.inv_mass;
@@ -278,15 +288,18 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
     const Vec2 n_vec = cc.normal;
     const Vec2 t_vec = right_perp(n_vec);
-    const Vec2 com_offset_a = sim_a.center - sim_a.transform.p;
-    const Vec2 com_offset_b = sim_b.center - sim_b.transform.p;
-    const Q32 inv_mass_sum = cc.inv_mass_a + cc.inv_mass_b;
+    const Vec2 com_offset_a = fast::sub(sim_a.center, sim_a.transform.p);
+    const Vec2 com_offset_b = fast::sub(sim_b.center, sim_b.transform.p);
+    const Q32 inv_mass_sum = fast::add(cc.inv_mass_a, cc.inv_mass_b);
     // Geometry (anchors, crosses, the start-of-step gap) uses fast_math.h:
     // anchors lie within a shape's reach of its body (< 2^21 m) and n, t and
     // the rotations are unit, so nothing saturates and the bits are the
-    // checked operators'. Mass terms keep the checked operators; with the
-    // inverse inertia bounded by contact_inv_inertia they stay in range
-    // ("Range of the preparation" above).
+    // checked operators'. The mass terms use fast_math.h too: its mul and add
+    // give the checked operators' bits in every state, saturation included
+    // (only the fault report is left out, as everywhere in fast_math.h's
+    // release path), and with the inverse inertia bounded by
+    // contact_inv_inertia they stay in range ("Range of the preparation"
+    // above).
     Vec2 anchors_a[2], anchors_b[2];
     Q32 reach_sq_a = square_extent(world->bodies[static_cast<size_t>(c.body_a)].max_extent);
     Q32 reach_sq_b = square_extent(world->bodies[static_cast<size_t>(c.body_b)].max_extent);
@@ -304,8 +317,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       ContactConstraintPoint& cp = cc.points[j];
       const Vec2 anchor_a = anchors_a[j];
       const Vec2 anchor_b = anchors_b[j];
-      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : sim_a.center + anchor_a;
-      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : sim_b.center + anchor_b;
+      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : fast::add(sim_a.center, anchor_a);
+      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : fast::add(sim_b.center, anchor_b);
       // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
       // plus this. At the start of the step the anchors close exactly
       // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
@@ -315,14 +328,14 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.adjusted_separation = mp.separation;
       const Q32 rn_a = fast::cross(anchor_a, n_vec), rn_b = fast::cross(anchor_b, n_vec);
       const Q32 rt_a = fast::cross(anchor_a, t_vec), rt_b = fast::cross(anchor_b, t_vec);
-      cp.angular_n_a = cc.inv_inertia_a * rn_a;
-      cp.angular_n_b = cc.inv_inertia_b * rn_b;
-      cp.angular_t_a = cc.inv_inertia_a * rt_a;
-      cp.angular_t_b = cc.inv_inertia_b * rt_b;
-      const Q32 k_normal = inv_mass_sum + cp.angular_n_a * rn_a + cp.angular_n_b * rn_b;
+      cp.angular_n_a = fast::mul(cc.inv_inertia_a, rn_a);
+      cp.angular_n_b = fast::mul(cc.inv_inertia_b, rn_b);
+      cp.angular_t_a = fast::mul(cc.inv_inertia_a, rt_a);
+      cp.angular_t_b = fast::mul(cc.inv_inertia_b, rt_b);
+      const Q32 k_normal = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_n_a, rn_a)), fast::mul(cp.angular_n_b, rn_b));
       cp.normal_mass = k_normal > Q32::zero() ? fast::reciprocal(k_normal) : Q32::zero();
-      cp.soft_normal_mass = cp.normal_mass * cc.softness.mass_scale;
-      const Q32 k_tangent = inv_mass_sum + cp.angular_t_a * rt_a + cp.angular_t_b * rt_b;
+      cp.soft_normal_mass = fast::mul(cp.normal_mass, cc.softness.mass_scale);
+      const Q32 k_tangent = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_t_a, rt_a)), fast::mul(cp.angular_t_b, rt_b));
       cp.tangent_mass = k_tangent > Q32::zero() ? fast::reciprocal(k_tangent) : Q32::zero();
       cp.rn_a = rn_a;
       cp.rn_b = rn_b;
@@ -330,9 +343,12 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.rt_b = rt_b;
       cp.normal_impulse = c.normal_impulse[static_cast<size_t>(j)];
       cp.tangent_impulse = c.tangent_impulse[static_cast<size_t>(j)];
+      cp.approach_velocity = Q32::zero();
+      cp.bounce_velocity = Q32::zero();
       cp.bounce_sub_step = -1;
       cp.active_sub_step = -1;
     }
+    if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
   }
   arena_free(arena, colour_of);
   pack_contact_lanes(world, context);
