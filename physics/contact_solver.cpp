@@ -185,13 +185,54 @@ inline Q32 square_extent(Q32 d) { return fast::mul(d, d); }
 /// I⁻¹·reach² ≤ k_max_contact_angular_inv_mass, otherwise
 /// k_max_contact_angular_inv_mass / reach² (< I⁻¹). The test is exact (a
 /// 128-bit product), so a body under the bound keeps every bit of I⁻¹.
-inline Q32 contact_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
-  if (inv_inertia <= Q32::zero() || reach_sq <= Q32::zero()) return inv_inertia;
+/// Whether contact_inv_inertia keeps I⁻¹ for this reach².
+inline bool keeps_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
+  if (inv_inertia <= Q32::zero() || reach_sq <= Q32::zero()) return true;
   // I⁻¹.raw · reach².raw > K · 2^64 ⇔ I⁻¹ · reach² > K (both factors ≥ 0).
   const wide::U128 p = wide::mul_s64(inv_inertia.raw, reach_sq.raw);
   const uint64_t k = static_cast<uint64_t>(k_max_contact_angular_inv_mass);
-  if (p.hi < k || (p.hi == k && p.lo == 0)) return inv_inertia;
+  return p.hi < k || (p.hi == k && p.lo == 0);
+}
+
+inline Q32 contact_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
+  if (keeps_inv_inertia(inv_inertia, reach_sq)) return inv_inertia;
   return Q32::from_int(k_max_contact_angular_inv_mass) / reach_sq;
+}
+
+/// A per-body shortcut for contact_inv_inertia, computed once per step: a
+/// bound c (raw Q32, a power of two, or 0 for none) such that every anchor r
+/// with |r.x|, |r.y| < c leaves the body's I⁻¹ unchanged, so its contacts
+/// skip the reach² dot products and the 128-bit test. Why that is exact:
+/// with v = I⁻¹.raw > 0 and w = bit_width(v), I⁻¹ < 2^(w−32); c = 2^e m
+/// with 2e + 1 + (w − 32) ≤ 15 (2^15 ≤ K = 64 000) gives I⁻¹·2c² < K, and
+/// e ≤ 14 as well. An anchor inside the box has exact |r|² < 2c² = 2^(2e+1)
+/// ≤ 2^29, a power of two that Q32 holds exactly, so its rounded dot product
+/// (rounding is monotonic, nothing saturates) is ≤ 2c² too; if also I⁻¹·max_extent² ≤ K (the same exact test, done here
+/// once), the reach² contact_inv_inertia would see is ≤ max(max_extent², 2c²)
+/// and its test passes: it would return I⁻¹, bit for bit. Anything else (a
+/// point outside the box, a body over the bound) takes the full path. I⁻¹ ≤ 0
+/// is returned unchanged by contact_inv_inertia, so every anchor passes.
+inline uint64_t contact_reach_box(Q32 inv_inertia, Q32 max_extent) {
+  if (inv_inertia <= Q32::zero()) return ~uint64_t{0};
+  if (!keeps_inv_inertia(inv_inertia, square_extent(max_extent))) return 0;
+  const int32_t w = static_cast<int32_t>(std::bit_width(static_cast<uint64_t>(inv_inertia.raw)));  // 1 … 63
+  const int32_t e2 = 46 - w;  // 2e ≤ 15 − 1 + 32 − w
+  if (e2 < -64) return 0;
+  const int32_t e = e2 >= 0 ? e2 / 2 : -((1 - e2) / 2);  // floor(e2 / 2)
+  const int32_t shift = 32 + e;                          // c.raw = 2^(32 + e)
+  if (shift <= 0) return 0;
+  // At most 2^14 m (anchors lie within 2^15 m of the centre of mass): then
+  // 2c² ≤ 2^29 m², so the dot products it stands for never saturate.
+  return uint64_t{1} << (shift < 46 ? shift : 46);
+}
+
+/// |v.x| < c and |v.y| < c (raw; c = 0: none, 1 ≤ c ≤ 2^46, or all ones: any):
+/// −c < x < c ⇔ x + c − 1 < 2c − 1 as unsigned.
+inline bool inside_reach_box(Vec2 v, uint64_t c) {
+  if (c == ~uint64_t{0}) return true;
+  if (c == 0) return false;  // (2c − 1 would wrap)
+  const uint64_t span = 2 * c - 1;
+  return (static_cast<uint64_t>(v.x.raw) + (c - 1) < span) & (static_cast<uint64_t>(v.y.raw) + (c - 1) < span);
 }
 
 }  // namespace
@@ -233,6 +274,13 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
   context->constraint_count = count;
   for (int32_t i = 0; i < context->solver_body_count; ++i) context->bounce_marks[i] = -1;
+  // Per solver body: the anchor box inside which contact_inv_inertia keeps
+  // I⁻¹ (contact_reach_box), once per step instead of per contact.
+  uint64_t* reach_box = arena_allocate_array<uint64_t>(arena, context->solver_body_count, "contact_reach_box");
+  for (int32_t i = 0; i < context->solver_body_count; ++i) {
+    const Body& body = world->bodies[static_cast<size_t>(context->solver_to_body[i])];
+    reach_box[i] = contact_reach_box(context->params[i].inv_inertia, body.max_extent);
+  }
 
   // Graph colours (contact_colour.cpp): constraints are stored colour by
   // colour, in contact order within a colour.
@@ -301,17 +349,28 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     // contact_inv_inertia they stay in range ("Range of the preparation"
     // above).
     Vec2 anchors_a[2], anchors_b[2];
-    Q32 reach_sq_a = square_extent(world->bodies[static_cast<size_t>(c.body_a)].max_extent);
-    Q32 reach_sq_b = square_extent(world->bodies[static_cast<size_t>(c.body_b)].max_extent);
+    bool inside_a = true, inside_b = true;
+    const uint64_t box_a = ia >= 0 ? reach_box[ia] : ~uint64_t{0};
+    const uint64_t box_b = ib >= 0 ? reach_box[ib] : ~uint64_t{0};
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       anchors_a[j] = fast::sub(mp.anchor_a, com_offset_a);
       anchors_b[j] = fast::sub(mp.anchor_b, com_offset_b);
-      reach_sq_a = max(reach_sq_a, fast::dot(anchors_a[j], anchors_a[j]));
-      reach_sq_b = max(reach_sq_b, fast::dot(anchors_b[j], anchors_b[j]));
+      inside_a = inside_a && inside_reach_box(anchors_a[j], box_a);
+      inside_b = inside_b && inside_reach_box(anchors_b[j], box_b);
     }
-    cc.inv_inertia_a = contact_inv_inertia(cc.inv_inertia_a, reach_sq_a);
-    cc.inv_inertia_b = contact_inv_inertia(cc.inv_inertia_b, reach_sq_b);
+    // Outside the box: the full bound (reach² from max_extent and the
+    // anchors; the same values contact_reach_box's shortcut stands for).
+    if (!inside_a) {
+      Q32 reach_sq = square_extent(world->bodies[static_cast<size_t>(c.body_a)].max_extent);
+      for (int32_t j = 0; j < cc.point_count; ++j) reach_sq = max(reach_sq, fast::dot(anchors_a[j], anchors_a[j]));
+      cc.inv_inertia_a = contact_inv_inertia(cc.inv_inertia_a, reach_sq);
+    }
+    if (!inside_b) {
+      Q32 reach_sq = square_extent(world->bodies[static_cast<size_t>(c.body_b)].max_extent);
+      for (int32_t j = 0; j < cc.point_count; ++j) reach_sq = max(reach_sq, fast::dot(anchors_b[j], anchors_b[j]));
+      cc.inv_inertia_b = contact_inv_inertia(cc.inv_inertia_b, reach_sq);
+    }
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       ContactConstraintPoint& cp = cc.points[j];
@@ -351,6 +410,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
   }
   arena_free(arena, colour_of);
+  arena_free(arena, reach_box);
   pack_contact_lanes(world, context);
 }
 
