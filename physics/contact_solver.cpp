@@ -226,6 +226,9 @@ inline uint64_t contact_reach_box(Q32 inv_inertia, Q32 max_extent) {
   return uint64_t{1} << (shift < 46 ? shift : 46);
 }
 
+/// contact_reach_box not yet computed for a body (3: never a result).
+constexpr uint64_t k_reach_box_unset = 3;
+
 /// |v.x| < c and |v.y| < c (raw; c = 0: none, 1 ≤ c ≤ 2^46, or all ones: any):
 /// −c < x < c ⇔ x + c − 1 < 2c − 1 as unsigned.
 inline bool inside_reach_box(Vec2 v, uint64_t c) {
@@ -273,14 +276,24 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->constraints = arena_allocate_array<ContactConstraint>(arena, count, "contact_constraints");
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
   context->constraint_count = count;
-  for (int32_t i = 0; i < context->solver_body_count; ++i) context->bounce_marks[i] = -1;
   // Per solver body: the anchor box inside which contact_inv_inertia keeps
-  // I⁻¹ (contact_reach_box), once per step instead of per contact.
+  // I⁻¹ (contact_reach_box), computed at a body's first constraint of the
+  // step (k_reach_box_unset until then: a scene of many bodies and few
+  // contacts pays nothing for the others).
   uint64_t* reach_box = arena_allocate_array<uint64_t>(arena, context->solver_body_count, "contact_reach_box");
   for (int32_t i = 0; i < context->solver_body_count; ++i) {
-    const Body& body = world->bodies[static_cast<size_t>(context->solver_to_body[i])];
-    reach_box[i] = contact_reach_box(context->params[i].inv_inertia, body.max_extent);
+    context->bounce_marks[i] = -1;
+    reach_box[i] = k_reach_box_unset;
   }
+  const auto body_reach_box = [world, context, reach_box](int32_t solver_index) {
+    if (solver_index < 0) return ~uint64_t{0};  // not simulated: I⁻¹ = 0 here
+    uint64_t& box = reach_box[solver_index];
+    if (box == k_reach_box_unset) {
+      const Body& body = world->bodies[static_cast<size_t>(context->solver_to_body[solver_index])];
+      box = contact_reach_box(context->params[solver_index].inv_inertia, body.max_extent);
+    }
+    return box;
+  };
 
   // Graph colours (contact_colour.cpp): constraints are stored colour by
   // colour, in contact order within a colour.
@@ -350,8 +363,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     // above).
     Vec2 anchors_a[2], anchors_b[2];
     bool inside_a = true, inside_b = true;
-    const uint64_t box_a = ia >= 0 ? reach_box[ia] : ~uint64_t{0};
-    const uint64_t box_b = ib >= 0 ? reach_box[ib] : ~uint64_t{0};
+    const uint64_t box_a = body_reach_box(ia);
+    const uint64_t box_b = body_reach_box(ib);
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       anchors_a[j] = fast::sub(mp.anchor_a, com_offset_a);
