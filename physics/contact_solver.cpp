@@ -314,12 +314,12 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
     const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
     ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
-    // Every field is written below (no zeroing pass over the 448-byte
+    // Every field is written below (no zeroing pass over the 464-byte
     // record first): the header here, each used point in the loop, an
     // unused second point zeroed as a whole. A field added to either struct
     // must be written here too: the sizes are asserted so that a merge that
     // adds one stops at this line.
-    static_assert(sizeof(ContactConstraintPoint) == 168 && sizeof(ContactConstraint) == 448,
+    static_assert(sizeof(ContactConstraintPoint) == 176 && sizeof(ContactConstraint) == 464,
                   "prepare_contact_constraints writes every field of ContactConstraint: add the new field there");
     cc.solver_a = ia;
     cc.solver_b = ib;
@@ -423,6 +423,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.bounce_velocity = Q32::zero();
       cp.bounce_sub_step = -1;
       cp.active_sub_step = -1;
+      cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
     }
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
   }
