@@ -116,6 +116,21 @@ struct World {
   BroadPhase broad_phase;            ///< pair buffers (broad_phase.h)
   std::vector<Contact> contacts;     ///< sorted by (shape_a, shape_b) (contact.h)
   std::vector<Contact> contact_scratch;  ///< the next list is built here, then swapped
+  /// Derived each step by update_contacts, never state (not hashed, saved or
+  /// restored; a restored world rebuilds it in its next step): indices into
+  /// `contacts`, ascending, of the contacts with a simulated body (awake,
+  /// enabled, not static) at the start of the step — every contact that is
+  /// not carried over asleep (contact.h, "Awake contacts").
+  std::vector<int32_t> awake_contacts;
+  /// Simulated bodies when awake_contacts was built. The set only grows
+  /// within a step until finalize (wakes), so a stage that finds the same
+  /// count of simulated bodies (prepare's solver_body_count) knows the index
+  /// still lists every contact with a simulated body.
+  int32_t awake_contacts_body_count = -1;
+  /// This step's update_contacts kept the contact list as it was — same keys
+  /// and generations, no touching flag changed — so the touching set is last
+  /// step's (events_after_step skips its diff when that set is in sync).
+  bool contact_set_unchanged = false;
   EventState events;                 ///< the last step's events and their buffers (events.h)
   IdPool joint_pool;                 ///< joint slots (joint.h)
   JointWorld joints;                 ///< joints, their collision filter and events (joint.h)
@@ -128,6 +143,23 @@ struct World {
   TaskSystem tasks;                  ///< worker count, pool or user task system (task.h); not state
   bool locked = false;               ///< true inside world_step(); changes are refused
 };
+
+/// Calls visit(contact index) in ascending index for every contact that may
+/// have a simulated body when `simulated_now` bodies are simulated: the awake
+/// index (World::awake_contacts) while it is complete — no body woke since
+/// update_contacts built it, which the unchanged count shows —, otherwise
+/// every contact. The visitor applies its own test either way (a contact
+/// left out has no simulated body), so both give the same results; only the
+/// number of contacts read differs.
+template <typename Visit>
+void for_each_awake_contact(const World& world, int32_t simulated_now, Visit&& visit) {
+  if (simulated_now == world.awake_contacts_body_count) {
+    for (const int32_t i : world.awake_contacts) visit(i);
+  } else {
+    const int32_t count = static_cast<int32_t>(world.contacts.size());
+    for (int32_t i = 0; i < count; ++i) visit(i);
+  }
+}
 
 /// The live world of a handle, or null.
 World* find_world(WorldId id);
