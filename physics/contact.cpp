@@ -115,6 +115,7 @@ void update_contacts(World* world) {
   std::vector<Contact>& old_list = world->contacts;
   std::vector<int32_t>& awake = world->awake_contacts;
   awake.clear();
+  world->contacts_read_after_update = 0;
   Arena* arena = &world->arena;
   // Per body: 1 when simulated (awake, enabled, not static), from one pass
   // over the bodies rather than two Body records per contact.

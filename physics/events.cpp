@@ -129,6 +129,7 @@ void events_after_contacts(World* w) {
   const Q32 threshold = w->def.hit_event_threshold;
   const Q32 dt = w->context.dt;
   const int32_t count = static_cast<int32_t>(w->contacts.size());
+  w->contacts_read_after_update += count;
   for (int32_t ci = 0; ci < count; ++ci) {
     const Contact& c = w->contacts[static_cast<size_t>(ci)];
     if ((c.flags & k_contact_touching) == 0) continue;
@@ -181,6 +182,7 @@ void events_after_step(World* w) {
     return;
   }
   e.touching_next.clear();
+  w->contacts_read_after_update += static_cast<int64_t>(w->contacts.size());
   for (const Contact& c : w->contacts) {
     if ((c.flags & k_contact_touching) == 0) continue;
     e.touching_next.push_back(PairRecord{c.shape_a, c.shape_b, c.generation_a, c.generation_b});

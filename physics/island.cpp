@@ -187,6 +187,7 @@ void stage_wake_touched(World* world, StepContext* context) {
   // sleeping islands.
   const int32_t scan_count = static_cast<int32_t>(world->awake_contacts.size());
   if (sleepers > 0 && scan_count > 0) {
+    world->contacts_read_after_update += scan_count;
     const int32_t scan_blocks = block_count_of(scan_count, k_wake_scan_block);
     int32_t* first_per_block = arena_allocate_array<int32_t>(arena, scan_blocks, "wake_first_per_block");
     const Contact* contacts = world->contacts.data();
@@ -214,6 +215,7 @@ void stage_wake_touched(World* world, StepContext* context) {
     }
     arena_free(arena, first_per_block);
   }
+  world->contacts_read_after_update += contact_count - first;
   for (int32_t i = first; i < contact_count; ++i) {
     const Contact& c = world->contacts[static_cast<size_t>(i)];
     if ((c.flags & k_contact_touching) == 0) continue;

@@ -131,6 +131,10 @@ struct World {
   /// and generations, no touching flag changed — so the touching set is last
   /// step's (events_after_step skips its diff when that set is in sync).
   bool contact_set_unchanged = false;
+  /// Contact records read by the stages after update_contacts in the current
+  /// or last step, counted per pass (BroadPhaseStats); a work counter, not
+  /// state, never read by the step.
+  int64_t contacts_read_after_update = 0;
   EventState events;                 ///< the last step's events and their buffers (events.h)
   IdPool joint_pool;                 ///< joint slots (joint.h)
   JointWorld joints;                 ///< joints, their collision filter and events (joint.h)
@@ -152,11 +156,13 @@ struct World {
 /// left out has no simulated body), so both give the same results; only the
 /// number of contacts read differs.
 template <typename Visit>
-void for_each_awake_contact(const World& world, int32_t simulated_now, Visit&& visit) {
+void for_each_awake_contact(World& world, int32_t simulated_now, Visit&& visit) {
   if (simulated_now == world.awake_contacts_body_count) {
+    world.contacts_read_after_update += static_cast<int64_t>(world.awake_contacts.size());
     for (const int32_t i : world.awake_contacts) visit(i);
   } else {
     const int32_t count = static_cast<int32_t>(world.contacts.size());
+    world.contacts_read_after_update += count;
     for (int32_t i = 0; i < count; ++i) visit(i);
   }
 }
