@@ -117,17 +117,7 @@ void update_contacts(World* world) {
   awake.clear();
   world->contacts_read_after_update = 0;
   Arena* arena = &world->arena;
-  // Per body: 1 when simulated (awake, enabled, not static), from one pass
-  // over the bodies rather than two Body records per contact.
-  const int32_t body_count = id_pool_capacity(world->body_pool);
-  uint8_t* moving = arena_allocate_array<uint8_t>(arena, body_count, "contact_body_moving");
-  int32_t simulated = 0;
-  for (int32_t b = 0; b < body_count; ++b) {
-    const bool m = id_pool_is_alive(world->body_pool, b) && body_is_simulated(world->bodies[static_cast<size_t>(b)]);
-    moving[b] = m ? 1 : 0;
-    simulated += m ? 1 : 0;
-  }
-  world->awake_contacts_body_count = simulated;
+  world->awake_contacts_wake_count = world->wake_count;
 
   // In place when the pairs are the old contacts' keys with the same
   // generations (a scene whose pairs did not change: every sleeping step, and
@@ -142,8 +132,18 @@ void update_contacts(World* world) {
                c.generation_a == id_pool_generation(world->shape_pool, pair.shape_a) &&
                c.generation_b == id_pool_generation(world->shape_pool, pair.shape_b);
   }
+  const auto simulated = [world](int32_t body) {
+    return body_is_simulated(world->bodies[static_cast<size_t>(body)]);
+  };
   const World& w = *world;
   if (in_place) {
+    // Per body: 1 when simulated (awake, enabled, not static), from one pass
+    // over the bodies rather than two Body records per contact.
+    const int32_t body_count = id_pool_capacity(world->body_pool);
+    uint8_t* moving = arena_allocate_array<uint8_t>(arena, body_count, "contact_body_moving");
+    for (int32_t b = 0; b < body_count; ++b) {
+      moving[b] = id_pool_is_alive(world->body_pool, b) && simulated(b) ? 1 : 0;
+    }
     const int32_t count = static_cast<int32_t>(old_list.size());
     for (int32_t i = 0; i < count; ++i) {
       const Contact& c = old_list[static_cast<size_t>(i)];
@@ -204,7 +204,8 @@ void update_contacts(World* world) {
     }
     const int32_t body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
     const int32_t body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
-    if (old != nullptr && moving[body_a] == 0 && moving[body_b] == 0) {
+    const bool moves = simulated(body_a) || simulated(body_b);
+    if (old != nullptr && !moves) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
       old_of[next.size()] = k_carried_contact;
@@ -214,7 +215,7 @@ void update_contacts(World* world) {
     // A new contact between two bodies that do not move is still computed
     // (it has no manifold yet) but is not an awake contact: no stage after
     // this one has work for it (no constraint, no wake, no island).
-    if (moving[body_a] != 0 || moving[body_b] != 0) awake.push_back(static_cast<int32_t>(next.size()));
+    if (moves) awake.push_back(static_cast<int32_t>(next.size()));
     old_of[next.size()] = old != nullptr ? static_cast<int32_t>(old - old_list.data()) : k_no_old_contact;
     Contact& c = next.emplace_back();  // zeroed in place (no copy); the narrow phase fills the manifold
     c.shape_a = pair.shape_a;
@@ -237,7 +238,6 @@ void update_contacts(World* world) {
                  }
                });
   arena_free(arena, old_of);
-  arena_free(arena, moving);
   std::swap(world->contacts, world->contact_scratch);
 }
 

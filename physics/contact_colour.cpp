@@ -46,7 +46,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
   };
   int32_t n = 0;
   const Contact* contacts = world->contacts.data();
-  for_each_awake_contact(*world, context->solver_body_count, [&](int32_t ci) {
+  for_each_awake_contact(*world, [&](int32_t ci) {
     const Contact& c = contacts[ci];
     if ((c.flags & k_contact_touching) == 0) return;
     const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];

@@ -222,7 +222,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   // (for_each_awake_contact, world.h), in contact order.
   const std::vector<Contact>& contacts = world->contacts;
   int32_t count = 0;
-  for_each_awake_contact(*world, context->solver_body_count, [&](int32_t ci) {
+  for_each_awake_contact(*world, [&](int32_t ci) {
     const Contact& c = contacts[static_cast<size_t>(ci)];
     if ((c.flags & k_contact_touching) == 0) return;
     if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
@@ -243,7 +243,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   int32_t* colour_of = colour_contact_constraints(world, context, count, &colour_start);
 
   int32_t n = 0;
-  for_each_awake_contact(*world, context->solver_body_count, [&](int32_t ci) {
+  for_each_awake_contact(*world, [&](int32_t ci) {
     const Contact& c = contacts[static_cast<size_t>(ci)];
     if ((c.flags & k_contact_touching) == 0) return;
     const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];

@@ -62,6 +62,7 @@ int32_t find_root(int32_t* parent, int32_t i) {
 int32_t wake_touching_count(World* world, int32_t body_index);
 
 void wake_body_island(World* world, int32_t body_index) {
+  ++world->wake_count;  // the awake contact index may be incomplete now (world.h)
   Body& body = world->bodies[static_cast<size_t>(body_index)];
   if (body.type == BodyType::static_body) return;
   if (body.awake || body.sleep_island == k_null_index) {
@@ -131,6 +132,7 @@ void put_body_to_sleep(World* world, int32_t body_index) {
 }
 
 void wake_all_bodies(World* world) {
+  ++world->wake_count;
   const int32_t end = id_pool_capacity(world->body_pool);
   for (int32_t b = 0; b < end; ++b) {
     Body& body = world->bodies[static_cast<size_t>(b)];
@@ -279,7 +281,7 @@ void stage_update_sleep(World* world, StepContext* context) {
   //    complete (for_each_awake_contact: no wake this step; finalize may
   //    only have disabled bodies, which the test below skips).
   const Contact* contacts = world->contacts.data();
-  for_each_awake_contact(*world, context->solver_body_count, [&](int32_t ci) {
+  for_each_awake_contact(*world, [&](int32_t ci) {
     const Contact& c = contacts[ci];
     if ((c.flags & k_contact_touching) == 0) return;
     if (!is_dynamic_simulated(world->bodies[static_cast<size_t>(c.body_a)]) ||

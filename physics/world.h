@@ -122,11 +122,14 @@ struct World {
   /// enabled, not static) at the start of the step — every contact that is
   /// not carried over asleep (contact.h, "Awake contacts").
   std::vector<int32_t> awake_contacts;
-  /// Simulated bodies when awake_contacts was built. The set only grows
-  /// within a step until finalize (wakes), so a stage that finds the same
-  /// count of simulated bodies (prepare's solver_body_count) knows the index
-  /// still lists every contact with a simulated body.
-  int32_t awake_contacts_body_count = -1;
+  /// Counts calls that may wake a body (wake_body_island, wake_all_bodies;
+  /// island.cpp). Not state; only compared with awake_contacts_wake_count.
+  uint64_t wake_count = 0;
+  /// wake_count when awake_contacts was built: while they are equal no body
+  /// became simulated since (within a step bodies only wake, until finalize
+  /// may disable some), so the index still lists every contact with a
+  /// simulated body. Cleared to ~0 by a restore.
+  uint64_t awake_contacts_wake_count = ~uint64_t{0};
   /// This step's update_contacts kept the contact list as it was — same keys
   /// and generations, no touching flag changed — so the touching set is last
   /// step's (events_after_step skips its diff when that set is in sync).
@@ -149,22 +152,20 @@ struct World {
 };
 
 /// Calls visit(contact index) in ascending index for every contact that may
-/// have a simulated body when `simulated_now` bodies are simulated: the awake
-/// index (World::awake_contacts) while it is complete — no body woke since
-/// update_contacts built it, which the unchanged count shows —, otherwise
-/// every contact. The visitor applies its own test either way (a contact
-/// left out has no simulated body), so both give the same results; only the
-/// number of contacts read differs.
+/// have a simulated body: the awake index (World::awake_contacts) while it is
+/// complete — no body woke since update_contacts built it (wake_count) — and
+/// shorter than the list, otherwise every contact. The visitor applies its
+/// own test either way (a contact left out has no simulated body), so both
+/// give the same results; only the number of contacts read differs. One call
+/// site for the visitor, so it is inlined.
 template <typename Visit>
-void for_each_awake_contact(World& world, int32_t simulated_now, Visit&& visit) {
-  if (simulated_now == world.awake_contacts_body_count) {
-    world.contacts_read_after_update += static_cast<int64_t>(world.awake_contacts.size());
-    for (const int32_t i : world.awake_contacts) visit(i);
-  } else {
-    const int32_t count = static_cast<int32_t>(world.contacts.size());
-    world.contacts_read_after_update += count;
-    for (int32_t i = 0; i < count; ++i) visit(i);
-  }
+void for_each_awake_contact(World& world, Visit&& visit) {
+  const bool use_index = world.wake_count == world.awake_contacts_wake_count &&
+                         world.awake_contacts.size() < world.contacts.size();
+  const int32_t* index = use_index ? world.awake_contacts.data() : nullptr;
+  const int32_t count = static_cast<int32_t>(use_index ? world.awake_contacts.size() : world.contacts.size());
+  world.contacts_read_after_update += count;
+  for (int32_t k = 0; k < count; ++k) visit(index != nullptr ? index[k] : k);
 }
 
 /// The live world of a handle, or null.
