@@ -30,6 +30,15 @@
 // static, disabled) is carried over unchanged — no narrow phase, impulses
 // kept — so a sleeping island costs only its broad-phase pairs (island.h).
 //
+// Awake contacts: the update also lists, in World::awake_contacts, the
+// contacts with a simulated body (ascending index), which the later stages
+// walk instead of the whole list while no body woke (for_each_awake_contact,
+// world.h). When the pairs are exactly the old contacts' keys and
+// generations the list is updated in place (no contact copied) and
+// World::contact_set_unchanged tells events_after_step whether any touching
+// flag changed. Both are derived every step, never state, so a restored
+// world steps identically.
+//
 // Memory: World::contacts and World::contact_scratch are swapped each step
 // (the new list is built in the scratch vector); both only grow, so after the
 // first steps of a scene no allocation happens here.

@@ -120,7 +120,7 @@ struct World {
   /// restored; a restored world rebuilds it in its next step): indices into
   /// `contacts`, ascending, of the contacts with a simulated body (awake,
   /// enabled, not static) at the start of the step — every contact that is
-  /// not carried over asleep (contact.h, "Awake contacts").
+  /// not carried over asleep (contact.cpp, "Awake contacts").
   std::vector<int32_t> awake_contacts;
   /// Counts calls that may wake a body (wake_body_island, wake_all_bodies;
   /// island.cpp). Not state; only compared with awake_contacts_wake_count.
