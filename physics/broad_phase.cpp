@@ -365,6 +365,8 @@ BroadPhaseStats world_broad_phase_stats(WorldId id) {
     if ((c.flags & k_contact_touching) != 0) ++touching;
   }
   stats.touching_pairs = touching;
+  stats.awake_contacts = static_cast<int32_t>(world->awake_contacts.size());
+  stats.contacts_read_after_update = world->contacts_read_after_update;
   return stats;
 }
 

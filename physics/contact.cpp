@@ -30,6 +30,15 @@
 // static, disabled) is carried over unchanged — no narrow phase, impulses
 // kept — so a sleeping island costs only its broad-phase pairs (island.h).
 //
+// Awake contacts: the update also lists, in World::awake_contacts, the
+// contacts with a simulated body (ascending index), which the later stages
+// walk instead of the whole list while no body woke (for_each_awake_contact,
+// world.h). When the pairs are exactly the old contacts' keys and
+// generations the list is updated in place (no contact copied) and
+// World::contact_set_unchanged tells events_after_step whether any touching
+// flag changed. Both are derived every step, never state, so a restored
+// world steps identically.
+//
 // Memory: World::contacts and World::contact_scratch are swapped each step
 // (the new list is built in the scratch vector); both only grow, so after the
 // first steps of a scene no allocation happens here.
@@ -113,10 +122,80 @@ void update_contacts(World* world) {
   broad_phase_update_pairs(world);
   const std::vector<ShapePair>& pairs = world->broad_phase.pairs;
   std::vector<Contact>& old_list = world->contacts;
+  std::vector<int32_t>& awake = world->awake_contacts;
+  awake.clear();
+  world->contacts_read_after_update = 0;
+  Arena* arena = &world->arena;
+  world->awake_contacts_wake_count = world->wake_count;
+
+  // In place when the pairs are the old contacts' keys with the same
+  // generations (a scene whose pairs did not change: every sleeping step, and
+  // most steps of a resting pile): no list is rebuilt and the carried-over
+  // contacts are not copied. Same contents as the merge below, which would
+  // keep every contact in its slot.
+  bool in_place = pairs.size() == old_list.size();
+  for (size_t i = 0; in_place && i < pairs.size(); ++i) {
+    const ShapePair& pair = pairs[i];
+    const Contact& c = old_list[i];
+    in_place = c.shape_a == pair.shape_a && c.shape_b == pair.shape_b &&
+               c.generation_a == id_pool_generation(world->shape_pool, pair.shape_a) &&
+               c.generation_b == id_pool_generation(world->shape_pool, pair.shape_b);
+  }
+  const auto simulated = [world](int32_t body) {
+    return body_is_simulated(world->bodies[static_cast<size_t>(body)]);
+  };
+  const World& w = *world;
+  if (in_place) {
+    // Per body: 1 when simulated (awake, enabled, not static), from one pass
+    // over the bodies rather than two Body records per contact.
+    const int32_t body_count = id_pool_capacity(world->body_pool);
+    uint8_t* moving = arena_allocate_array<uint8_t>(arena, body_count, "contact_body_moving");
+    for (int32_t b = 0; b < body_count; ++b) {
+      moving[b] = id_pool_is_alive(world->body_pool, b) && simulated(b) ? 1 : 0;
+    }
+    const int32_t count = static_cast<int32_t>(old_list.size());
+    for (int32_t i = 0; i < count; ++i) {
+      const Contact& c = old_list[static_cast<size_t>(i)];
+      if (moving[c.body_a] != 0 || moving[c.body_b] != 0) awake.push_back(i);
+    }
+    // The narrow phase over the awake contacts, each from a copy of itself
+    // (its old contact), rebuilt from zero as the merge path builds it.
+    const int32_t awake_count = static_cast<int32_t>(awake.size());
+    const int32_t blocks = block_count_of(awake_count, k_contact_block);
+    uint8_t* flipped = arena_allocate_array<uint8_t>(arena, blocks, "contact_touching_flipped");
+    Contact* slots = old_list.data();
+    const int32_t* index = awake.data();
+    parallel_for(&world->tasks, "narrow_phase", awake_count, k_contact_block,
+                 [&w, slots, index, flipped](int32_t begin, int32_t end) {
+                   uint8_t changed = 0;
+                   for (int32_t k = begin; k < end; ++k) {
+                     Contact& c = slots[index[k]];
+                     const Contact old = c;
+                     c = Contact{};
+                     c.shape_a = old.shape_a;
+                     c.shape_b = old.shape_b;
+                     c.generation_a = old.generation_a;
+                     c.generation_b = old.generation_b;
+                     c.body_a = old.body_a;
+                     c.body_b = old.body_b;
+                     c.flags = old.flags;
+                     update_manifold(w, &c, &old);
+                     changed |= static_cast<uint8_t>(((c.flags ^ old.flags) & k_contact_touching) != 0 ? 1 : 0);
+                   }
+                   flipped[begin / k_contact_block] = changed;
+                 });
+    bool unchanged = true;
+    for (int32_t k = 0; k < blocks; ++k) unchanged = unchanged && flipped[k] == 0;
+    world->contact_set_unchanged = unchanged;
+    arena_free(arena, flipped);
+    arena_free(arena, moving);
+    return;
+  }
+  world->contact_set_unchanged = false;
+
   std::vector<Contact>& next = world->contact_scratch;
   next.clear();
   // Per new contact: the index of its old contact, or a k_* mark above.
-  Arena* arena = &world->arena;
   int32_t* old_of = arena_allocate_array<int32_t>(arena, static_cast<int32_t>(pairs.size()), "contact_old_index");
   size_t cursor = 0;
   for (const ShapePair& pair : pairs) {
@@ -134,14 +213,18 @@ void update_contacts(World* world) {
     }
     const int32_t body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
     const int32_t body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
-    if (old != nullptr && !body_is_simulated(world->bodies[static_cast<size_t>(body_a)]) &&
-        !body_is_simulated(world->bodies[static_cast<size_t>(body_b)])) {
+    const bool moves = simulated(body_a) || simulated(body_b);
+    if (old != nullptr && !moves) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
       old_of[next.size()] = k_carried_contact;
       next.push_back(*old);
       continue;
     }
+    // A new contact between two bodies that do not move is still computed
+    // (it has no manifold yet) but is not an awake contact: no stage after
+    // this one has work for it (no constraint, no wake, no island).
+    if (moves) awake.push_back(static_cast<int32_t>(next.size()));
     old_of[next.size()] = old != nullptr ? static_cast<int32_t>(old - old_list.data()) : k_no_old_contact;
     Contact& c = next.emplace_back();  // zeroed in place (no copy); the narrow phase fills the manifold
     c.shape_a = pair.shape_a;
@@ -153,7 +236,6 @@ void update_contacts(World* world) {
     c.flags = old != nullptr ? old->flags : 0;
   }
   // The narrow phase, per contact (see the file comment).
-  const World& w = *world;
   Contact* slots = next.data();
   const Contact* olds = old_list.data();
   parallel_for(&world->tasks, "narrow_phase", static_cast<int32_t>(next.size()), k_contact_block,
@@ -184,6 +266,7 @@ void reserve_contact_headroom(World* world) {
   const size_t contacts = world->contacts.size();
   reserve_for(&world->contacts, contacts);
   reserve_for(&world->contact_scratch, contacts);
+  reserve_for(&world->awake_contacts, contacts);
   BroadPhase& bp = world->broad_phase;
   reserve_for(&bp.pairs, bp.pairs.size());
   const size_t shapes = static_cast<size_t>(id_pool_capacity(world->shape_pool));

@@ -45,11 +45,13 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
     return p.inv_mass != Q32::zero() || p.inv_inertia != Q32::zero();
   };
   int32_t n = 0;
-  for (const Contact& c : world->contacts) {
-    if ((c.flags & k_contact_touching) == 0) continue;
+  const Contact* contacts = world->contacts.data();
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[ci];
+    if ((c.flags & k_contact_touching) == 0) return;
     const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
     const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
-    if (ia == k_null_index && ib == k_null_index) continue;
+    if (ia == k_null_index && ib == k_null_index) return;
     const bool ma = movable(ia), mb = movable(ib);
     const uint32_t used = (ma ? colour_masks[ia] : 0u) | (mb ? colour_masks[ib] : 0u);
     const uint32_t free = ~used & ((uint32_t{1} << k_contact_colour_count) - 1u);
@@ -61,7 +63,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
     }
     colour_of[n++] = colour;
     ++colour_start[colour + 1];
-  }
+  });
   for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
   for (int32_t k = 0; k <= k_contact_colour_count + 1; ++k) context->colour_offsets[k] = colour_start[k];
   context->colour_count = 0;

@@ -266,16 +266,19 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->contact_softness = make_softness(hertz, world->def.contact_damping_ratio, h);
   context->static_softness = make_softness(hertz * 2, world->def.contact_damping_ratio, h);
 
+  // Contacts of sleeping islands are not read: only the awake index
+  // (for_each_awake_contact, world.h), in contact order.
   const std::vector<Contact>& contacts = world->contacts;
   int32_t count = 0;
-  for (const Contact& c : contacts) {
-    if ((c.flags & k_contact_touching) == 0) continue;
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[static_cast<size_t>(ci)];
+    if ((c.flags & k_contact_touching) == 0) return;
     if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
         context->body_to_solver[static_cast<size_t>(c.body_b)] == k_null_index) {
-      continue;
+      return;
     }
     ++count;
-  }
+  });
   Arena* arena = &world->arena;
   context->constraints = arena_allocate_array<ContactConstraint>(arena, count, "contact_constraints");
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
@@ -305,12 +308,12 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   int32_t* colour_of = colour_contact_constraints(world, context, count, &colour_start);
 
   int32_t n = 0;
-  for (size_t ci = 0; ci < contacts.size(); ++ci) {
-    const Contact& c = contacts[ci];
-    if ((c.flags & k_contact_touching) == 0) continue;
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[static_cast<size_t>(ci)];
+    if ((c.flags & k_contact_touching) == 0) return;
     const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
     const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
-    if (ia == k_null_index && ib == k_null_index) continue;
+    if (ia == k_null_index && ib == k_null_index) return;
     const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
     const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
     ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
@@ -426,7 +429,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
     }
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
-  }
+  });
   arena_free(arena, colour_of);
   arena_free(arena, reach_box);
   pack_contact_lanes(world, context);

@@ -41,6 +41,11 @@ struct EventState {
   std::vector<SensorEvent> sensor_begin;
   std::vector<SensorEvent> sensor_end;
   std::vector<BodyMoveEvent> body_move;
+  /// `touching` is the touching set of World::contacts as they are now: set
+  /// by events_after_step once it has built the set, cleared by a restore
+  /// (which replaces both). Not state: with it false the next step only takes
+  /// the full diff instead of skipping it (World::contact_set_unchanged).
+  bool touching_in_sync = false;
 };
 
 /// Called by world_step right after the contact update: records start

@@ -129,6 +129,7 @@ void events_after_contacts(World* w) {
   const Q32 threshold = w->def.hit_event_threshold;
   const Q32 dt = w->context.dt;
   const int32_t count = static_cast<int32_t>(w->contacts.size());
+  w->contacts_read_after_update += count;
   for (int32_t ci = 0; ci < count; ++ci) {
     const Contact& c = w->contacts[static_cast<size_t>(ci)];
     if ((c.flags & k_contact_touching) == 0) continue;
@@ -154,6 +155,10 @@ void events_after_contacts(World* w) {
   }
 }
 
+namespace {
+void emit_hits_and_rest(World* w);
+}  // namespace
+
 void events_clear_reported(EventState* e) {
   e->contact_begin.clear();
   e->contact_end.clear();
@@ -167,8 +172,17 @@ void events_after_step(World* w) {
   EventState& e = w->events;
   events_clear_reported(&e);
 
-  // Contacts: the touching set now (contacts are sorted by key).
+  // Contacts: the touching set now (contacts are sorted by key). When this
+  // step's contact update kept every contact with its touching flag (every
+  // step of a world at rest or asleep whose pairs did not change) and
+  // `touching` is the set of the list it started from, the set is the same
+  // and nothing begins or ends: the pass over the contacts is skipped.
+  if (w->contact_set_unchanged && e.touching_in_sync) {
+    emit_hits_and_rest(w);
+    return;
+  }
   e.touching_next.clear();
+  w->contacts_read_after_update += static_cast<int64_t>(w->contacts.size());
   for (const Contact& c : w->contacts) {
     if ((c.flags & k_contact_touching) == 0) continue;
     e.touching_next.push_back(PairRecord{c.shape_a, c.shape_b, c.generation_a, c.generation_b});
@@ -187,7 +201,16 @@ void events_after_step(World* w) {
             ContactEndEvent{shape_handle(*w, r.shape_a, r.generation_a), shape_handle(*w, r.shape_b, r.generation_b)});
       });
   std::swap(e.touching, e.touching_next);
+  e.touching_in_sync = true;
+  emit_hits_and_rest(w);
+}
 
+namespace {
+
+/// The part of events_after_step after the touching-set diff: hits, sensors,
+/// moves.
+void emit_hits_and_rest(World* w) {
+  EventState& e = w->events;
   // Hits: the candidates, in contact order.
   for (const HitCandidate& h : e.hit_candidates) {
     const Contact& c = w->contacts[static_cast<size_t>(h.contact_index)];
@@ -227,6 +250,8 @@ void events_after_step(World* w) {
     e.body_move.push_back(BodyMoveEvent{make_body_id(*w, i), now, !w->bodies[static_cast<size_t>(i)].awake});
   }
 }
+
+}  // namespace
 
 void events_reserve_headroom(World* w) {
   EventState& e = w->events;

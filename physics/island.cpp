@@ -62,6 +62,7 @@ int32_t find_root(int32_t* parent, int32_t i) {
 int32_t wake_touching_count(World* world, int32_t body_index);
 
 void wake_body_island(World* world, int32_t body_index) {
+  ++world->wake_count;  // the awake contact index may be incomplete now (world.h)
   Body& body = world->bodies[static_cast<size_t>(body_index)];
   if (body.type == BodyType::static_body) return;
   if (body.awake || body.sleep_island == k_null_index) {
@@ -131,6 +132,7 @@ void put_body_to_sleep(World* world, int32_t body_index) {
 }
 
 void wake_all_bodies(World* world) {
+  ++world->wake_count;
   const int32_t end = id_pool_capacity(world->body_pool);
   for (int32_t b = 0; b < end; ++b) {
     Body& body = world->bodies[static_cast<size_t>(b)];
@@ -180,33 +182,42 @@ void stage_wake_touched(World* world, StepContext* context) {
   for (int32_t k = 0; k < body_blocks; ++k) sleepers += sleepers_per_block[k];
   const int32_t contact_count = static_cast<int32_t>(world->contacts.size());
   int32_t first = contact_count;  // the first contact whose start states wake a sleeper
-  if (sleepers > 0 && contact_count > 0) {
-    const int32_t contact_blocks = block_count_of(contact_count, k_wake_scan_block);
-    int32_t* first_per_block = arena_allocate_array<int32_t>(arena, contact_blocks, "wake_first_per_block");
+  // Only a contact with a body that wakes others — a simulated one — can
+  // wake, and at the start of this pass (right after update_contacts, before
+  // any wake) those are exactly the awake index's contacts: the scan reads
+  // only them (World::awake_contacts, in contact order), not the contacts of
+  // sleeping islands.
+  const int32_t scan_count = static_cast<int32_t>(world->awake_contacts.size());
+  if (sleepers > 0 && scan_count > 0) {
+    world->contacts_read_after_update += scan_count;
+    const int32_t scan_blocks = block_count_of(scan_count, k_wake_scan_block);
+    int32_t* first_per_block = arena_allocate_array<int32_t>(arena, scan_blocks, "wake_first_per_block");
     const Contact* contacts = world->contacts.data();
-    parallel_for(context->tasks, "wake_touched_scan", contact_count, k_wake_scan_block,
+    const int32_t* scan = world->awake_contacts.data();
+    parallel_for(context->tasks, "wake_touched_scan", scan_count, k_wake_scan_block,
                  [=](int32_t begin, int32_t stop) {
                    int32_t found = stop;
-                   for (int32_t i = begin; i < stop; ++i) {
-                     const Contact& c = contacts[i];
+                   for (int32_t k = begin; k < stop; ++k) {
+                     const Contact& c = contacts[scan[k]];
                      if ((c.flags & k_contact_touching) == 0) continue;
                      const uint8_t sa = start[c.body_a], sb = start[c.body_b];
                      if ((sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others)) {
-                       found = i;
+                       found = k;
                        break;
                      }
                    }
                    first_per_block[begin / k_wake_scan_block] = found;
                  });
-    for (int32_t k = 0; k < contact_blocks; ++k) {
-      const int32_t block_end = k == contact_blocks - 1 ? contact_count : (k + 1) * k_wake_scan_block;
+    for (int32_t k = 0; k < scan_blocks; ++k) {
+      const int32_t block_end = k == scan_blocks - 1 ? scan_count : (k + 1) * k_wake_scan_block;
       if (first_per_block[k] < block_end) {
-        first = first_per_block[k];
+        first = scan[first_per_block[k]];
         break;
       }
     }
     arena_free(arena, first_per_block);
   }
+  world->contacts_read_after_update += contact_count - first;
   for (int32_t i = first; i < contact_count; ++i) {
     const Contact& c = world->contacts[static_cast<size_t>(i)];
     if ((c.flags & k_contact_touching) == 0) continue;
@@ -266,16 +277,21 @@ void stage_update_sleep(World* world, StepContext* context) {
     parent[b] = b;
     blocked[b] = 0;
   }
-  for (const Contact& c : world->contacts) {
-    if ((c.flags & k_contact_touching) == 0) continue;
+  //    Contacts of sleeping islands are not read while the awake index is
+  //    complete (for_each_awake_contact: no wake this step; finalize may
+  //    only have disabled bodies, which the test below skips).
+  const Contact* contacts = world->contacts.data();
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[ci];
+    if ((c.flags & k_contact_touching) == 0) return;
     if (!is_dynamic_simulated(world->bodies[static_cast<size_t>(c.body_a)]) ||
         !is_dynamic_simulated(world->bodies[static_cast<size_t>(c.body_b)])) {
-      continue;
+      return;
     }
     const int32_t ra = find_root(parent, c.body_a), rb = find_root(parent, c.body_b);
     if (ra < rb) parent[rb] = ra;
     if (rb < ra) parent[ra] = rb;
-  }
+  });
   // 2b. Joints between two simulated dynamic bodies, in joint index order.
   for (int32_t ji = 0; ji < id_pool_capacity(world->joint_pool); ++ji) {
     if (!id_pool_is_alive(world->joint_pool, ji)) continue;

@@ -421,6 +421,9 @@ void commit_image(WorldState& state, StateImage& image) {
 
 void rebuild_after_restore(World* w) {
   w->contact_scratch.clear();
+  w->awake_contacts.clear();  // derived: the next update_contacts rebuilds it
+  w->awake_contacts_wake_count = ~uint64_t{0};
+  w->contact_set_unchanged = false;
   w->joints.events.clear();
   for (JointEvent& e : w->joints.pending) {  // stale handles of this world
     e.joint.world = w->id;
@@ -433,6 +436,7 @@ void rebuild_after_restore(World* w) {
   e.sensor_next.clear();
   e.hit_candidates.clear();
   events_clear_reported(&e);
+  e.touching_in_sync = false;  // the next step diffs the restored touching set in full
   broad_phase_reset(w);
   // Buffers sized for the restored scene, so its next step does not allocate.
   reserve_contact_headroom(w);

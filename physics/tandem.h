@@ -316,6 +316,14 @@ struct BroadPhaseStats {
                                 ///< = 1 − touching_pairs / pairs)
   uint64_t update_nanoseconds = 0;  ///< wall time of the broad phase (steady clock); timing only, it never
                                     ///< feeds back into the simulation
+  /// Contacts with a simulated body at the start of the last step (the rest
+  /// belong to sleeping islands or lie between bodies that cannot move).
+  int32_t awake_contacts = 0;
+  /// Contact records the last step read after its contact update (prepare and
+  /// colouring, the wake scan and waking, islands, events), counted per pass;
+  /// with a sleeping pile and nothing waking it, a few times awake_contacts,
+  /// never the whole list. A work counter, not state.
+  int64_t contacts_read_after_update = 0;
 };
 
 /// Selects the broad phase used from the next step on (any BroadPhaseKind).

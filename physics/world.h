@@ -116,6 +116,28 @@ struct World {
   BroadPhase broad_phase;            ///< pair buffers (broad_phase.h)
   std::vector<Contact> contacts;     ///< sorted by (shape_a, shape_b) (contact.h)
   std::vector<Contact> contact_scratch;  ///< the next list is built here, then swapped
+  /// Derived each step by update_contacts, never state (not hashed, saved or
+  /// restored; a restored world rebuilds it in its next step): indices into
+  /// `contacts`, ascending, of the contacts with a simulated body (awake,
+  /// enabled, not static) at the start of the step — every contact that is
+  /// not carried over asleep (contact.cpp, "Awake contacts").
+  std::vector<int32_t> awake_contacts;
+  /// Counts calls that may wake a body (wake_body_island, wake_all_bodies;
+  /// island.cpp). Not state; only compared with awake_contacts_wake_count.
+  uint64_t wake_count = 0;
+  /// wake_count when awake_contacts was built: while they are equal no body
+  /// became simulated since (within a step bodies only wake, until finalize
+  /// may disable some), so the index still lists every contact with a
+  /// simulated body. Cleared to ~0 by a restore.
+  uint64_t awake_contacts_wake_count = ~uint64_t{0};
+  /// This step's update_contacts kept the contact list as it was — same keys
+  /// and generations, no touching flag changed — so the touching set is last
+  /// step's (events_after_step skips its diff when that set is in sync).
+  bool contact_set_unchanged = false;
+  /// Contact records read by the stages after update_contacts in the current
+  /// or last step, counted per pass (BroadPhaseStats); a work counter, not
+  /// state, never read by the step.
+  int64_t contacts_read_after_update = 0;
   EventState events;                 ///< the last step's events and their buffers (events.h)
   IdPool joint_pool;                 ///< joint slots (joint.h)
   JointWorld joints;                 ///< joints, their collision filter and events (joint.h)
@@ -128,6 +150,23 @@ struct World {
   TaskSystem tasks;                  ///< worker count, pool or user task system (task.h); not state
   bool locked = false;               ///< true inside world_step(); changes are refused
 };
+
+/// Calls visit(contact index) in ascending index for every contact that may
+/// have a simulated body: the awake index (World::awake_contacts) while it is
+/// complete — no body woke since update_contacts built it (wake_count) — and
+/// shorter than the list, otherwise every contact. The visitor applies its
+/// own test either way (a contact left out has no simulated body), so both
+/// give the same results; only the number of contacts read differs. One call
+/// site for the visitor, so it is inlined.
+template <typename Visit>
+void for_each_awake_contact(World& world, Visit&& visit) {
+  const bool use_index = world.wake_count == world.awake_contacts_wake_count &&
+                         world.awake_contacts.size() < world.contacts.size();
+  const int32_t* index = use_index ? world.awake_contacts.data() : nullptr;
+  const int32_t count = static_cast<int32_t>(use_index ? world.awake_contacts.size() : world.contacts.size());
+  world.contacts_read_after_update += count;
+  for (int32_t k = 0; k < count; ++k) visit(index != nullptr ? index[k] : k);
+}
 
 /// The live world of a handle, or null.
 World* find_world(WorldId id);

@@ -2,9 +2,14 @@
 // profile (tools only; driven by callgrind_stages.sh).
 //
 // Usage: tandem_profile_stages SCENE [--warmup W] [--ticks N] [--broadphase NAME]
+//                              [--sleep on|off|scene]
 //
-// Builds SCENE (scenes.h: circles-N, pyramid-B, rain-N) the way the bench
-// harness does (default_world_def(), the scene's gravity, sleeping off),
+// Builds SCENE (scenes.h: circles-N, pyramid-B, rain-N, smash, ...) the way
+// the bench harness does (default_world_def(), the scene's gravity; sleeping
+// as --sleep says: `scene` (the default) follows the scene as the harness does
+// — on for smash, whose block is created asleep, off for every other scene —,
+// `off` forces it off everywhere with every body created awake (the tool's
+// behaviour before the option), `on` turns it on for every body),
 // steps it W times, then N times inside tandem_profile_timed_steps(), the one
 // function callgrind_stages.sh collects (--toggle-collect), and prints the
 // mean broad-phase pairs and touching pairs per timed step, which the script
@@ -47,7 +52,7 @@ namespace {
 
 int usage(const char* why) {
   std::fprintf(stderr, "tandem_profile_stages: %s\nusage: tandem_profile_stages SCENE [--warmup W] [--ticks N] "
-                       "[--broadphase naive|sap|grid|tree]\n", why);
+                       "[--broadphase naive|sap|grid|tree] [--sleep on|off|scene]\n", why);
   return 2;
 }
 
@@ -65,6 +70,7 @@ int main(int argc, char** argv) {
   std::string scene_name;
   int32_t warmup = 0, ticks = 30;
   BroadPhaseKind kind = BroadPhaseKind::grid;
+  enum class SleepMode { scene, on, off } sleep_mode = SleepMode::scene;
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (std::strcmp(a, "--warmup") == 0 && i + 1 < argc) {
@@ -78,6 +84,12 @@ int main(int argc, char** argv) {
       else if (b == "grid") kind = BroadPhaseKind::grid;
       else if (b == "tree") kind = BroadPhaseKind::tree;
       else return usage("--broadphase: expected naive, sap, grid or tree");
+    } else if (std::strcmp(a, "--sleep") == 0 && i + 1 < argc) {
+      const std::string m = argv[++i];
+      if (m == "scene") sleep_mode = SleepMode::scene;
+      else if (m == "on") sleep_mode = SleepMode::on;
+      else if (m == "off") sleep_mode = SleepMode::off;
+      else return usage("--sleep: expected on, off or scene");
     } else if (a[0] != '-' && scene_name.empty()) {
       scene_name = a;
     } else {
@@ -89,9 +101,10 @@ int main(int argc, char** argv) {
   std::string error;
   if (!bench::make_scene(scene_name, &scene, &error)) return usage(error.c_str());
 
+  const bool sleep = sleep_mode == SleepMode::on || (sleep_mode == SleepMode::scene && scene.sleep);
   WorldDef wd = default_world_def();
   wd.gravity = {scene.gravity_x, scene.gravity_y};
-  wd.enable_sleep = false;
+  wd.enable_sleep = sleep;
   wd.broad_phase = kind;
   const Result<WorldId> w = create_world(wd);
   if (!w.ok()) return usage(w.status.message.c_str());
@@ -102,7 +115,8 @@ int main(int argc, char** argv) {
     bd.type = s.dynamic ? BodyType::dynamic_body : BodyType::static_body;
     bd.position = {s.x, s.y};
     bd.linear_velocity = {s.vx, s.vy};
-    bd.enable_sleep = false;
+    bd.enable_sleep = sleep;
+    bd.is_awake = sleep ? s.awake : true;  // a scene's sleeping bodies start awake with sleep off
     const Result<BodyId> b = create_body(w.value, bd);
     if (!b.ok()) return usage(b.status.message.c_str());
     ShapeDef sd = default_shape_def();
@@ -136,8 +150,8 @@ int main(int argc, char** argv) {
   ProfileTotals totals;
   tandem_profile_timed_steps(w.value, ticks, dt, &totals);
   if (totals.failed_step >= 0) return usage("a timed step failed");
-  std::printf("scene %s bodies %zu warmup %d ticks %d pairs_per_step %.1f touching_pairs_per_step %.1f\n",
-              scene_name.c_str(), scene.bodies.size(), warmup, ticks, static_cast<double>(totals.pairs) / ticks,
+  std::printf("scene %s sleep %s bodies %zu warmup %d ticks %d pairs_per_step %.1f touching_pairs_per_step %.1f\n",
+              scene_name.c_str(), sleep ? "on" : "off", scene.bodies.size(), warmup, ticks, static_cast<double>(totals.pairs) / ticks,
               static_cast<double>(totals.touching_pairs) / ticks);
   (void)destroy_world(w.value);
   return 0;
