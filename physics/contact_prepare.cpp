@@ -1,0 +1,284 @@
+// contact_prepare.cpp — the per-step half of the contact solver: one
+// constraint per touching contact with a simulated body (normal, inverse
+// masses, friction, restitution, soft coefficients) and per point the
+// anchors, lever-arm products, effective masses and warm-start impulses that
+// the sub-step passes of contact_solver.cpp read. The arithmetic and range
+// argument ("PER STEP", "Range of the preparation") is in contact_solver.cpp's
+// opening comment and docs/determinism.md, "Range of the contact
+// preparation". Split out of contact_solver.cpp (code moved, not changed).
+#include <bit>
+
+#include "physics/contact_colour.h"
+#include "physics/contact_lanes.h"
+#include "physics/contact_solver.h"
+#include "physics/contact_solver_internal.h"
+#include "physics/fast_math.h"
+#include "physics/world.h"
+
+namespace tandem {
+
+using namespace contact_internal;
+
+namespace {
+
+/// The largest angular term I⁻¹·r² of a contact's effective-mass denominator,
+/// 1/kg: 64 times the largest inverse mass of a body (1/k_min_body_mass). See
+/// "Range of the preparation" in contact_solver.cpp and docs/determinism.md.
+constexpr int64_t k_max_contact_angular_inv_mass = 64000;
+
+/// d², saturated at Q32::max() (an extent of at most 2·k_max_shape_size
+/// squares to ≤ 4e8 m², far inside the range).
+inline Q32 square_extent(Q32 d) { return fast::mul(d, d); }
+
+/// The inverse inertia a contact constraint uses for a body whose contact
+/// points lie within reach_sq (m²) of its centre of mass: I⁻¹ itself while
+/// I⁻¹·reach² ≤ k_max_contact_angular_inv_mass, otherwise
+/// k_max_contact_angular_inv_mass / reach² (< I⁻¹). The test is exact (a
+/// 128-bit product), so a body under the bound keeps every bit of I⁻¹.
+/// Whether contact_inv_inertia keeps I⁻¹ for this reach².
+inline bool keeps_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
+  if (inv_inertia <= Q32::zero() || reach_sq <= Q32::zero()) return true;
+  // I⁻¹.raw · reach².raw > K · 2^64 ⇔ I⁻¹ · reach² > K (both factors ≥ 0).
+  const wide::U128 p = wide::mul_s64(inv_inertia.raw, reach_sq.raw);
+  const uint64_t k = static_cast<uint64_t>(k_max_contact_angular_inv_mass);
+  return p.hi < k || (p.hi == k && p.lo == 0);
+}
+
+inline Q32 contact_inv_inertia(Q32 inv_inertia, Q32 reach_sq) {
+  if (keeps_inv_inertia(inv_inertia, reach_sq)) return inv_inertia;
+  return Q32::from_int(k_max_contact_angular_inv_mass) / reach_sq;
+}
+
+/// A per-body shortcut for contact_inv_inertia, computed once per step: a
+/// bound c (raw Q32, a power of two, or 0 for none) such that every anchor r
+/// with |r.x|, |r.y| < c leaves the body's I⁻¹ unchanged, so its contacts
+/// skip the reach² dot products and the 128-bit test. Why that is exact:
+/// with v = I⁻¹.raw > 0 and w = bit_width(v), I⁻¹ < 2^(w−32); c = 2^e m
+/// with 2e + 1 + (w − 32) ≤ 15 (2^15 ≤ K = 64 000) gives I⁻¹·2c² < K, and
+/// e ≤ 14 as well. An anchor inside the box has exact |r|² < 2c² = 2^(2e+1)
+/// ≤ 2^29, a power of two that Q32 holds exactly, so its rounded dot product
+/// (rounding is monotonic, nothing saturates) is ≤ 2c² too; if also I⁻¹·max_extent² ≤ K (the same exact test, done here
+/// once), the reach² contact_inv_inertia would see is ≤ max(max_extent², 2c²)
+/// and its test passes: it would return I⁻¹, bit for bit. Anything else (a
+/// point outside the box, a body over the bound) takes the full path. I⁻¹ ≤ 0
+/// is returned unchanged by contact_inv_inertia, so every anchor passes.
+inline uint64_t contact_reach_box(Q32 inv_inertia, Q32 max_extent) {
+  if (inv_inertia <= Q32::zero()) return ~uint64_t{0};
+  if (!keeps_inv_inertia(inv_inertia, square_extent(max_extent))) return 0;
+  const int32_t w = static_cast<int32_t>(std::bit_width(static_cast<uint64_t>(inv_inertia.raw)));  // 1 … 63
+  const int32_t e2 = 46 - w;  // 2e ≤ 15 − 1 + 32 − w
+  if (e2 < -64) return 0;
+  const int32_t e = e2 >= 0 ? e2 / 2 : -((1 - e2) / 2);  // floor(e2 / 2)
+  const int32_t shift = 32 + e;                          // c.raw = 2^(32 + e)
+  if (shift <= 0) return 0;
+  // At most 2^14 m (anchors lie within 2^15 m of the centre of mass): then
+  // 2c² ≤ 2^29 m², so the dot products it stands for never saturate.
+  return uint64_t{1} << (shift < 46 ? shift : 46);
+}
+
+/// contact_reach_box not yet computed for a body (3: never a result).
+constexpr uint64_t k_reach_box_unset = 3;
+
+/// |v.x| < c and |v.y| < c (raw; c = 0: none, 1 ≤ c ≤ 2^46, or all ones: any):
+/// −c < x < c ⇔ x + c − 1 < 2c − 1 as unsigned.
+inline bool inside_reach_box(Vec2 v, uint64_t c) {
+  if (c == ~uint64_t{0}) return true;
+  if (c == 0) return false;  // (2c − 1 would wrap)
+  const uint64_t span = 2 * c - 1;
+  return (static_cast<uint64_t>(v.x.raw) + (c - 1) < span) & (static_cast<uint64_t>(v.y.raw) + (c - 1) < span);
+}
+
+}  // namespace
+
+Softness make_softness(Q32 hertz, Q32 zeta, Q32 h) {
+  const Q32 omega = k_two_pi * hertz;
+  const Q32 a1 = zeta * 2 + h * omega;
+  const Q32 a2 = h * omega * a1;
+  const Q32 a3 = Q32::one() / (Q32::one() + a2);
+  Softness s;
+  s.bias_rate = a1 > Q32::zero() ? omega / a1 : Q32::zero();
+  s.mass_scale = a2 * a3;
+  s.impulse_scale = a3;
+  return s;
+}
+
+void prepare_contact_constraints(World* world, StepContext* context) {
+  const Q32 h = context->h;
+  context->inv_h = Q32::one() / h;
+  context->max_push_speed = world->def.max_contact_push_speed;
+  context->restitution_threshold = world->def.restitution_threshold;
+  // Stiffness capped at a quarter of the sub-step rate (stability).
+  const Q32 hertz = min(world->def.contact_hertz, context->inv_h / 4);
+  context->contact_softness = make_softness(hertz, world->def.contact_damping_ratio, h);
+  context->static_softness = make_softness(hertz * 2, world->def.contact_damping_ratio, h);
+
+  // Contacts of sleeping islands are not read: only the awake index
+  // (for_each_awake_contact, world.h), in contact order.
+  const std::vector<Contact>& contacts = world->contacts;
+  int32_t count = 0;
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[static_cast<size_t>(ci)];
+    if ((c.flags & k_contact_touching) == 0) return;
+    if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
+        context->body_to_solver[static_cast<size_t>(c.body_b)] == k_null_index) {
+      return;
+    }
+    ++count;
+  });
+  Arena* arena = &world->arena;
+  context->constraints = arena_allocate_array<ContactConstraint>(arena, count, "contact_constraints");
+  context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
+  context->constraint_count = count;
+  // Per solver body: the anchor box inside which contact_inv_inertia keeps
+  // I⁻¹ (contact_reach_box), computed at a body's first constraint of the
+  // step (k_reach_box_unset until then: a scene of many bodies and few
+  // contacts pays nothing for the others).
+  uint64_t* reach_box = arena_allocate_array<uint64_t>(arena, context->solver_body_count, "contact_reach_box");
+  for (int32_t i = 0; i < context->solver_body_count; ++i) {
+    context->bounce_marks[i] = -1;
+    reach_box[i] = k_reach_box_unset;
+  }
+  const auto body_reach_box = [world, context, reach_box](int32_t solver_index) {
+    if (solver_index < 0) return ~uint64_t{0};  // not simulated: I⁻¹ = 0 here
+    uint64_t& box = reach_box[solver_index];
+    if (box == k_reach_box_unset) {
+      const Body& body = world->bodies[static_cast<size_t>(context->solver_to_body[solver_index])];
+      box = contact_reach_box(context->params[solver_index].inv_inertia, body.max_extent);
+    }
+    return box;
+  };
+
+  // Graph colours (contact_colour.cpp): constraints are stored colour by
+  // colour, in contact order within a colour.
+  int32_t colour_start[k_contact_colour_count + 2];
+  int32_t* colour_of = colour_contact_constraints(world, context, count, &colour_start);
+
+  int32_t n = 0;
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[static_cast<size_t>(ci)];
+    if ((c.flags & k_contact_touching) == 0) return;
+    const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
+    const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
+    if (ia == k_null_index && ib == k_null_index) return;
+    const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
+    const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
+    ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
+    // Every field is written below (no zeroing pass over the 464-byte
+    // record first): the header here, each used point in the loop, an
+    // unused second point zeroed as a whole. A field added to either struct
+    // must be written here too: the sizes are asserted so that a merge that
+    // adds one stops at this line.
+    static_assert(sizeof(ContactConstraintPoint) == 176 && sizeof(ContactConstraint) == 464,
+                  "prepare_contact_constraints writes every field of ContactConstraint: add the new field there");
+    cc.solver_a = ia;
+    cc.solver_b = ib;
+    cc.contact_index = static_cast<int32_t>(ci);
+    cc.point_count = c.manifold.point_count;
+    cc.normal = c.manifold.normal;
+    cc.friction = c.friction;
+    cc.restitution = c.restitution;
+    Vec2 dv_a{}, dv_b{};
+    cc.inv_mass_a = Q32::zero();
+    cc.inv_inertia_a = Q32::zero();
+    cc.inv_mass_b = Q32::zero();
+    cc.inv_inertia_b = Q32::zero();
+    if (ia >= 0) {
+      const SolverBodyParams& p = context->params[ia];
+      cc.inv_mass_a = p.inv_mass;
+      cc.inv_inertia_a = p.inv_inertia;
+      dv_a = p.delta_linear_velocity;
+    }
+    if (ib >= 0) {
+      const SolverBodyParams& p = context->params[ib];
+      cc.inv_mass_b = p.inv_mass;
+      cc.inv_inertia_b = p.inv_inertia;
+      dv_b = p.delta_linear_velocity;
+    }
+    cc.kick = fast::dot(fast::sub(dv_b, dv_a), cc.normal);
+    const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
+    cc.softness = rigid_side ? context->static_softness : context->contact_softness;
+
+    const Rot rotation_a = ia >= 0 ? context->states[ia].rotation : Rot{};
+    const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
+    const Vec2 n_vec = cc.normal;
+    const Vec2 t_vec = right_perp(n_vec);
+    const Vec2 com_offset_a = fast::sub(sim_a.center, sim_a.transform.p);
+    const Vec2 com_offset_b = fast::sub(sim_b.center, sim_b.transform.p);
+    const Q32 inv_mass_sum = fast::add(cc.inv_mass_a, cc.inv_mass_b);
+    // Geometry (anchors, crosses, the start-of-step gap) uses fast_math.h:
+    // anchors lie within a shape's reach of its body (< 2^21 m) and n, t and
+    // the rotations are unit, so nothing saturates and the bits are the
+    // checked operators'. The mass terms use fast_math.h too: its mul and add
+    // give the checked operators' bits in every state, saturation included
+    // (only the fault report is left out, as everywhere in fast_math.h's
+    // release path), and with the inverse inertia bounded by
+    // contact_inv_inertia they stay in range ("Range of the preparation" in
+    // contact_solver.cpp).
+    Vec2 anchors_a[2], anchors_b[2];
+    bool inside_a = true, inside_b = true;
+    const uint64_t box_a = body_reach_box(ia);
+    const uint64_t box_b = body_reach_box(ib);
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
+      anchors_a[j] = fast::sub(mp.anchor_a, com_offset_a);
+      anchors_b[j] = fast::sub(mp.anchor_b, com_offset_b);
+      inside_a = inside_a && inside_reach_box(anchors_a[j], box_a);
+      inside_b = inside_b && inside_reach_box(anchors_b[j], box_b);
+    }
+    // Outside the box: the full bound (reach² from max_extent and the
+    // anchors; the same values contact_reach_box's shortcut stands for).
+    if (!inside_a) {
+      Q32 reach_sq = square_extent(world->bodies[static_cast<size_t>(c.body_a)].max_extent);
+      for (int32_t j = 0; j < cc.point_count; ++j) reach_sq = max(reach_sq, fast::dot(anchors_a[j], anchors_a[j]));
+      cc.inv_inertia_a = contact_inv_inertia(cc.inv_inertia_a, reach_sq);
+    }
+    if (!inside_b) {
+      Q32 reach_sq = square_extent(world->bodies[static_cast<size_t>(c.body_b)].max_extent);
+      for (int32_t j = 0; j < cc.point_count; ++j) reach_sq = max(reach_sq, fast::dot(anchors_b[j], anchors_b[j]));
+      cc.inv_inertia_b = contact_inv_inertia(cc.inv_inertia_b, reach_sq);
+    }
+    for (int32_t j = 0; j < cc.point_count; ++j) {
+      const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
+      ContactConstraintPoint& cp = cc.points[j];
+      const Vec2 anchor_a = anchors_a[j];
+      const Vec2 anchor_b = anchors_b[j];
+      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : fast::add(sim_a.center, anchor_a);
+      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : fast::add(sim_b.center, anchor_b);
+      // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
+      // plus this. At the start of the step the anchors close exactly
+      // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
+      // the rounding of R·(Rᵀ·anchor), a few raw units: the manifold's
+      // separation is taken as it is instead of paying four rotations to
+      // cancel that rounding.
+      cp.adjusted_separation = mp.separation;
+      const Q32 rn_a = fast::cross(anchor_a, n_vec), rn_b = fast::cross(anchor_b, n_vec);
+      const Q32 rt_a = fast::cross(anchor_a, t_vec), rt_b = fast::cross(anchor_b, t_vec);
+      cp.angular_n_a = fast::mul(cc.inv_inertia_a, rn_a);
+      cp.angular_n_b = fast::mul(cc.inv_inertia_b, rn_b);
+      cp.angular_t_a = fast::mul(cc.inv_inertia_a, rt_a);
+      cp.angular_t_b = fast::mul(cc.inv_inertia_b, rt_b);
+      const Q32 k_normal = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_n_a, rn_a)), fast::mul(cp.angular_n_b, rn_b));
+      cp.normal_mass = k_normal > Q32::zero() ? fast::reciprocal(k_normal) : Q32::zero();
+      cp.soft_normal_mass = fast::mul(cp.normal_mass, cc.softness.mass_scale);
+      const Q32 k_tangent = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_t_a, rt_a)), fast::mul(cp.angular_t_b, rt_b));
+      cp.tangent_mass = k_tangent > Q32::zero() ? fast::reciprocal(k_tangent) : Q32::zero();
+      cp.rn_a = rn_a;
+      cp.rn_b = rn_b;
+      cp.rt_a = rt_a;
+      cp.rt_b = rt_b;
+      cp.normal_impulse = c.normal_impulse[static_cast<size_t>(j)];
+      cp.tangent_impulse = c.tangent_impulse[static_cast<size_t>(j)];
+      cp.approach_velocity = Q32::zero();
+      cp.bounce_velocity = Q32::zero();
+      cp.bounce_sub_step = -1;
+      cp.active_sub_step = -1;
+      cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
+    }
+    if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
+  });
+  arena_free(arena, colour_of);
+  arena_free(arena, reach_box);
+  pack_contact_lanes(world, context);
+}
+
+}  // namespace tandem
