@@ -1,6 +1,6 @@
 // contact_colour.h — graph colouring of the contact constraints (internal).
 //
-// Each step, prepare_contact_constraints (contact_solver.cpp) stores its
+// Each step, prepare_contact_constraints (contact_prepare.cpp) stores its
 // constraints colour by colour; this module decides the colours. The
 // colouring is a pure function of the contact list (in contact order, i.e.
 // sorted by shape-pair key) and of which bodies are simulated and movable:

@@ -14,7 +14,7 @@
 //   update_contacts            broad-phase pairs → contacts → manifolds (contact.cpp)
 //   wake_touched               wake sleeping islands touched by awake bodies (island.cpp)
 //   prepare_bodies             gather simulated bodies into solver arrays (arena)
-//   prepare_contacts           contact constraints from manifolds (contact_solver.cpp)
+//   prepare_contacts           contact constraints from manifolds (contact_prepare.cpp)
 //   for each sub-step (h = dt / n):
 //     record_approach          each contact point's normal velocity before gravity (bounce reference)
 //     integrate_velocities     v ← v/(1 + h·c) + h·(s·g + F/m); ω likewise; clamp speeds
