@@ -175,5 +175,9 @@ tandem_replay_cli_test(state-json 0 "state|${out}/stack.tnr|--tick|0|--json"
   REQUIRES replay_stack)
 tandem_replay_cli_test(state-past-end 2 "state|${out}/stack.tnr|--tick|61"
   ERR "stack.tnr: --tick 61 is past the last recorded tick 60" REQUIRES replay_stack)
+tandem_replay_cli_test(state-negative-tick 2 "state|scenes/stack.json|--tick|-3"
+  ERR "--tick: Value -3 not in range 0 to 1099511627776")
+tandem_replay_cli_test(state-huge-tick 2 "state|scenes/stack.json|--tick|99999999999999999999"
+  ERR "--tick: Value 99999999999999999999 not in range 0 to 1099511627776")
 tandem_replay_cli_test(state-help 0 "state|--help" OUT "Examples:\n  tandem state")
 tandem_replay_cli_test(state-bad-scene 2 "state|${out}/none.json" ERR "none.json: cannot open")

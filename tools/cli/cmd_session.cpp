@@ -268,7 +268,7 @@ void add_common(CLI::App* c, PlayArgs* a) {
   c->add_option("--jitter", a->jitter, "plus uniform 0…MS of jitter (default 0; reorders packets)")->check(CLI::Range(0, 2000));
   c->add_option("--seed", a->seed, "bots, network simulator and session id (default 1; every peer must agree)");
   c->add_option("--inject-desync", a->inject_desync, "nudge player 0's disc by one raw unit on endpoint 1 after this tick")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(int64_t{0}, INT64_MAX));
   c->add_option("--frame-us", a->frame_us, "frame length in microseconds (default 16667: 60 Hz)")->check(CLI::Range(1000, 1000000));
   auto* crates = c->add_option("--crates", a->crates, "crates in the arena built in code (default 40)")->check(CLI::Range(0, 1000));
   c->add_option("--scene", a->scene,

@@ -158,7 +158,7 @@ void register_state_commands(CLI::App& app, const GlobalOptions& options, std::v
   state->add_option("file", args->file, "scene file (JSON) or replay file (from tandem record)")->required();
   state->add_option("--tick,-t", args->tick, "tick to show: 0 is before the first step (default: the scene's "
                                              "\"ticks\", or a replay's last recorded tick)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(int64_t{0}, int64_t{1} << 40));  // the bound of run/record --ticks
   add_output_flags(state, &args->json, &args->quiet, "print only the summary line (tick, body count, world hash)");
   state->footer(
       "Numbers are exact decimals with their raw Q32.32 value; outputs from two machines diff line by line.\n"
