@@ -39,6 +39,12 @@ inline void add_bench_options(CLI::App& app, BenchOptions* o, bool peers_default
                  "Tandem's worker threads (WorldDef::worker_count, built-in pool), 1-16; results are identical for "
                  "every count (default 1)")
       ->check(CLI::Range(1, 16));
+  app.add_option_function<std::string>(
+         "--clock", [o](const std::string& v) { o->cpu_clock = v == "cpu"; },
+         "wall (default) or cpu: time single-threaded rows by the process's CPU time (CLOCK_PROCESS_CPUTIME_ID), "
+         "which a busy machine disturbs far less than the wall clock; rows with more than one worker stay on the "
+         "wall clock (CPU time sums the threads)")
+      ->check(CLI::IsMember({"wall", "cpu"}));
   app.add_flag("--profile", o->profile,
                "print Tandem's per-stage profile (median ms/step per stage over all timed steps) as a Markdown "
                "table; the JSON always has it");

@@ -1,8 +1,8 @@
 // harness.h — what one engine harness does with one scene (tools only).
 //
 // A harness builds a fresh world from a SceneSpec, steps it `warmup` steps
-// untimed and `steps` steps timed (steady_clock around the timed loop only),
-// and probes the result. Quality numbers come from doubles read back from the
+// untimed and `steps` steps timed (StepTimer around the timed loop only: wall
+// clock and the process's CPU time), and probes the result. Quality numbers come from doubles read back from the
 // engine after the run (display only; nothing flows back into a world):
 //   ke_start / ke_end   total kinetic energy Σ ½mv² + ½Iω² of the dynamic
 //                       bodies, J, as created and after warm-up + timed steps
@@ -20,6 +20,9 @@
 // the peers (peers.h) when they are linked in.
 #pragma once
 
+#include <time.h>
+
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -48,10 +51,38 @@ struct Quality {
 /// One run: milliseconds per timed step and the probes; `error` non-empty
 /// when the engine refused the scene (then nothing else is meaningful).
 struct RunResult {
-  double ms_per_step = 0;
+  double ms_per_step = 0;      ///< wall clock (steady_clock), ms per timed step
+  double cpu_ms_per_step = 0;  ///< the process's CPU time (every thread), ms per timed step
   Quality quality;
   ProfileSeries profile;  ///< Tandem only: world_profile() after every timed step
   std::string error;
+};
+
+/// The process's CPU time so far, ms (CLOCK_PROCESS_CPUTIME_ID: the sum over
+/// its threads, so it equals wall time only for a single-threaded run that
+/// was never descheduled).
+inline double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+/// Times an engine's timed loop: construct just before it, call stop() just
+/// after; writes wall and CPU ms per step into the result.
+class StepTimer {
+ public:
+  StepTimer() : wall0_(std::chrono::steady_clock::now()), cpu0_(process_cpu_ms()) {}
+  /// Writes ms per step over `steps` steps (0 when steps is 0).
+  void stop(int32_t steps, RunResult* result) const {
+    const double cpu = process_cpu_ms() - cpu0_;
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0_).count();
+    result->ms_per_step = steps > 0 ? wall / steps : 0.0;
+    result->cpu_ms_per_step = steps > 0 ? cpu / steps : 0.0;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point wall0_;
+  double cpu0_;
 };
 
 /// Runs one scene once: build, `warmup` untimed steps, `steps` timed steps.

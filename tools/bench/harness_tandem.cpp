@@ -203,14 +203,13 @@ RunResult run_tandem(BroadPhaseKind kind, int32_t workers, const SceneSpec& scen
     const StepResult r = world_step(world, dt);
     if (!r.ok()) return fail("world_step (warm-up " + std::to_string(i) + ")", r.status);
   }
-  const auto t0 = std::chrono::steady_clock::now();
+  const StepTimer timer;
   for (int32_t i = 0; i < steps; ++i) {
     const StepResult r = world_step(world, dt);
     if (!r.ok()) return fail("world_step (" + std::to_string(i) + ")", r.status);
     result.profile.add(world_profile(world));  // a copy of a few integers; inside the timed loop
   }
-  const auto t1 = std::chrono::steady_clock::now();
-  result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
+  timer.stop(steps, &result);
   probe(scene, bodies, true, &result.quality);
   (void)destroy_world(world);
   return result;

@@ -146,10 +146,9 @@ RunResult run_box2d24(const SceneSpec& scene, int32_t warmup, int32_t steps) {
   const float dt = static_cast<float>(to_double(time_step()));
   constexpr int32_t velocity_iterations = 8, position_iterations = 3;
   for (int32_t i = 0; i < warmup; ++i) world->Step(dt, velocity_iterations, position_iterations);
-  const auto t0 = std::chrono::steady_clock::now();
+  const StepTimer timer;
   for (int32_t i = 0; i < steps; ++i) world->Step(dt, velocity_iterations, position_iterations);
-  const auto t1 = std::chrono::steady_clock::now();
-  result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
+  timer.stop(steps, &result);
   probe(scene, bodies, true, &result.quality);
   return result;
 }

@@ -21,7 +21,6 @@
 // with 2.4's C++ ones.
 #include <box2d/box2d.h>
 
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -141,10 +140,9 @@ RunResult run_box2d3(int32_t workers, const SceneSpec& scene, int32_t warmup, in
   const float dt = static_cast<float>(to_double(time_step()));
   constexpr int sub_steps = 4;
   for (int32_t i = 0; i < warmup; ++i) b2World_Step(world, dt, sub_steps);
-  const auto t0 = std::chrono::steady_clock::now();
+  const StepTimer timer;
   for (int32_t i = 0; i < steps; ++i) b2World_Step(world, dt, sub_steps);
-  const auto t1 = std::chrono::steady_clock::now();
-  result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
+  timer.stop(steps, &result);
   probe(scene, bodies, true, &result.quality);
   b2DestroyWorld(world);
   return result;
@@ -155,6 +153,7 @@ RunResult run_box2d3(int32_t workers, const SceneSpec& scene, int32_t warmup, in
 Engine box2d3_engine(int32_t workers) {
   Engine e;
   e.engine = "box2d3-w" + std::to_string(workers);
+  e.workers = workers;
   e.broad_phase = "dyn-tree";
   const b2Version v = b2GetVersion();
   e.note = "Box2D v" + std::to_string(v.major) + "." + std::to_string(v.minor) + "." + std::to_string(v.revision) +

@@ -4,7 +4,6 @@
 #include <chipmunk/chipmunk.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -113,10 +112,9 @@ RunResult run_chipmunk(const SceneSpec& scene, int32_t warmup, int32_t steps) {
   probe(scene, bodies, false, &result.quality);
   const double dt = to_double(time_step());
   for (int32_t i = 0; i < warmup; ++i) cpSpaceStep(space, dt);
-  const auto t0 = std::chrono::steady_clock::now();
+  const StepTimer timer;
   for (int32_t i = 0; i < steps; ++i) cpSpaceStep(space, dt);
-  const auto t1 = std::chrono::steady_clock::now();
-  result.ms_per_step = steps > 0 ? std::chrono::duration<double, std::milli>(t1 - t0).count() / steps : 0.0;
+  timer.stop(steps, &result);
   probe(scene, bodies, true, &result.quality);
   for (cpShape* sh : shapes) {
     cpSpaceRemoveShape(space, sh);

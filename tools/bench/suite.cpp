@@ -176,13 +176,14 @@ void print_table(const std::vector<Row>& rows, const Machine& m, const BenchOpti
   const std::vector<std::string> peers = peer_names(rows);
   std::printf("\nTandem physics benchmark — %s, %u logical cores; %s; %s\n", m.cpu.c_str(), m.cores,
               m.compiler.c_str(), m.build.c_str());
-  std::printf("%s; load average %s before, %s after. Median ms/step over the runs (min-max);\n", m.date.c_str(),
-              m.load_before.c_str(), m.load_after.c_str());
+  std::printf("%s; load average %s before, %s after. Median ms/step over the runs (min-max), %s;\n", m.date.c_str(),
+              m.load_before.c_str(), m.load_after.c_str(),
+              o.cpu_clock ? "process CPU time for 1-worker rows, wall clock for the others (--clock cpu)"
+                          : "wall clock");
   std::printf("ratios are Tandem / peer (above 1: Tandem slower). Quality columns: first run.\n\n");
   std::printf("%-14s %-16s %5s %9s %-19s", "scene", "engine", "runs", "median", "min-max");
   for (const std::string& p : peers) std::printf(" %10s", ("/" + p).substr(0, 10).c_str());
   std::printf(" %9s %10s %9s %9s %8s %4s  %s\n", "KE chg %", "KE end J", "top y", "top sag", "max v", "esc", "notes");
-  (void)o;
   for (const Row& r : rows) {
     std::printf("%-14s %-16s", r.scene.c_str(), label(r).c_str());
     if (!r.skipped.empty() || !r.error.empty()) {
@@ -271,7 +272,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
       << ", \"date\": " << json_string(m.date) << ", \"load_average_before\": " << json_string(m.load_before)
       << ", \"load_average_after\": " << json_string(m.load_after) << "},\n";
   out << "  \"options\": {\"runs\": " << o.runs << ", \"runs_large\": " << (o.runs_large ? o.runs_large : o.runs)
-      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"workers\": " << o.workers << ", \"naive_max\": " << o.naive_max << ", \"max_run_seconds\": " << o.max_run_seconds
+      << ", \"steps\": " << o.steps << ", \"warmup\": " << o.warmup << ", \"workers\": " << o.workers << ", \"clock\": " << json_string(o.cpu_clock ? "cpu" : "wall") << ", \"naive_max\": " << o.naive_max << ", \"max_run_seconds\": " << o.max_run_seconds
       << ", \"time_step\": \"1/60 s\"},\n";
   out << "  \"warnings\": [";
   for (size_t i = 0; i < warnings.size(); ++i) out << (i ? ", " : "") << json_string(warnings[i]);
@@ -283,7 +284,8 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     const Quality& q = r.quality;
     out << (i ? ",\n" : "\n") << "    {\"scene\": " << json_string(r.scene) << ", \"family\": " << json_string(r.family)
         << ", \"size\": " << r.size << ", \"bodies\": " << r.bodies << ", \"engine\": " << json_string(r.engine.engine)
-        << ", \"broad_phase\": " << json_string(r.engine.broad_phase) << ", \"workers\": " << r.engine.workers;
+        << ", \"broad_phase\": " << json_string(r.engine.broad_phase) << ", \"workers\": " << r.engine.workers
+        << ", \"clock\": " << json_string(o.cpu_clock && r.engine.workers <= 1 ? "cpu" : "wall");
     if (!r.engine.note.empty()) out << ", \"note\": " << json_string(r.engine.note);
     if (!r.skipped.empty()) {
       out << ", \"skipped\": " << json_string(r.skipped) << "}";
@@ -539,10 +541,12 @@ int run_bench_suite(const BenchOptions& o) {
         }
         if (run == 0) row.quality = r.quality;
         row.profile.append(r.profile);
-        row.ms.push_back(r.ms_per_step);
+        const bool cpu = o.cpu_clock && engine.workers <= 1;  // CPU time sums threads: wall for the others
+        const double ms = cpu ? r.cpu_ms_per_step : r.ms_per_step;
+        row.ms.push_back(ms);
         if (!o.quiet) {
-          std::fprintf(stderr, "  %-14s %-18s run %d/%d: %.3f ms/step\n", scene.name.c_str(), label(row).c_str(),
-                       run + 1, runs, r.ms_per_step);
+          std::fprintf(stderr, "  %-14s %-18s run %d/%d: %.3f ms/step (%s; wall %.3f, CPU %.3f)\n", scene.name.c_str(),
+                       label(row).c_str(), run + 1, runs, ms, cpu ? "CPU" : "wall", r.ms_per_step, r.cpu_ms_per_step);
         }
         if (o.max_run_seconds > 0 && r.ms_per_step * steps > 1000.0 * o.max_run_seconds) {
           // Too slow to repeat: keep this run, skip the rest and the larger scenes of this family.

@@ -38,6 +38,9 @@ struct BenchOptions {
   int32_t workers = 1;                    ///< Tandem's WorldDef::worker_count, 1…16 (built-in pool)
   bool profile = false;                   ///< also print Tandem's per-stage profile (median ms per
                                           ///< stage, world_profile()) as a Markdown table
+  bool cpu_clock = false;                 ///< time single-threaded rows by the process's CPU time instead of
+                                          ///< the wall clock (--clock cpu: steadier on a shared machine);
+                                          ///< rows with more than one worker keep the wall clock
   int32_t rays = 0;                       ///< > 0: run the ray-cast benchmark (ray_bench.cpp) with this many
                                           ///< rays per batch instead of the stepping one; default scene rain-4000
 };
