@@ -43,6 +43,7 @@
 #include <algorithm>
 #include <string>
 
+#include "fixed/str_cat.h"
 #include "physics/collision.h"
 #include "physics/limits.h"
 
@@ -75,21 +76,12 @@ std::string decimal(Q32 v) {
   return s;
 }
 
-/// Concatenates message pieces (by appending: g++ 12's -Wrestrict misfires
-/// on `"literal" + std::string` chains at -O3).
-template <typename... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  (s.append(parts), ...);
-  return s;
-}
-
-std::string point_text(Vec2 p) { return cat("(", decimal(p.x), ", ", decimal(p.y), ")"); }
+std::string point_text(Vec2 p) { return str_cat("(", decimal(p.x), ", ", decimal(p.y), ")"); }
 
 /// A failed status whose message is the pieces concatenated.
 template <typename... Parts>
 Status fail(const Parts&... parts) {
-  return Status{StatusCode::invalid_argument, cat(parts...)};
+  return Status{StatusCode::invalid_argument, str_cat(parts...)};
 }
 
 /// True when |x| + margin and |y| + margin are within k_max_shape_size

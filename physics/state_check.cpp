@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "fixed/str_cat.h"
 #include "physics/body.h"
 #include "physics/broad_phase.h"
 #include "physics/contact.h"
@@ -146,17 +147,11 @@ struct ImageChecker {
       refuse_unit(r, fx, v, n);
     }
   }
-  /// Built by appending, out of line (g++ 12 -O3's -Wrestrict misfires on
-  /// the chained temporaries once this is inlined into a larger file).
+  /// Out of line: the error path only.
   [[gnu::noinline, gnu::cold]] void refuse_unit(const RecordRef& r, const char* fx, Vec2 v, Q32 n) {
-    std::string what = "(";
-    what += to_string(v.x);
-    what += ", ";
-    what += to_string(v.y);
-    what += ") has squared length ";
-    what += to_string(n);
-    what += ", expected 1 ± 2^-16 (a unit vector)";
-    refuse(r, fx, what);
+    refuse(r, fx,
+           str_cat("(", to_string(v.x), ", ", to_string(v.y), ") has squared length ", to_string(n),
+                   ", expected 1 ± 2^-16 (a unit vector)"));
   }
 };
 

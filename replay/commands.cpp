@@ -4,6 +4,8 @@
 
 #include <utility>
 
+#include "fixed/str_cat.h"
+
 namespace tandem {
 
 namespace {
@@ -350,8 +352,6 @@ const char* command_type_name(CommandType type) {
   return "unknown";
 }
 
-// Built by appending piece by piece: g++ 12 at -O3 misreports "literal" +
-// std::string temporaries here (-Wrestrict, a false positive).
 std::string describe(const Command& command) {
   std::string s = command_type_name(command.type);
   if (uses_body(command.type)) {
@@ -364,8 +364,8 @@ std::string describe(const Command& command) {
     s += command.shapes.size() == 1 ? " shape)" : " shapes)";
   }
   if (is_joint_command(command.type) && command.type != CommandType::create_joint) {
-    s += " joint {index " + std::to_string(command.joint.index) + ", generation " +
-         std::to_string(command.joint.generation) + "}";
+    s += str_cat(" joint {index ", std::to_string(command.joint.index), ", generation ",
+                 std::to_string(command.joint.generation), "}");
   }
   if (command.type == CommandType::user_input) {
     s += " (";

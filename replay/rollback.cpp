@@ -21,6 +21,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "fixed/str_cat.h"
 #include "physics/state_access.h"
 
 namespace tandem {
@@ -42,17 +43,8 @@ uint32_t load_u32(const uint8_t* p) {
   return v;
 }
 
-/// Concatenates message pieces by appending (g++ 12 -O3's -Wrestrict
-/// misfires on `"literal" + std::string` chains; the i686 build failed on one).
-template <typename... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  (s.append(parts), ...);
-  return s;
-}
-
 Status refuse(size_t at, const std::string& what) {
-  return Status{StatusCode::invalid_argument, cat("rollback_restore: offset ", std::to_string(at), ": ", what)};
+  return Status{StatusCode::invalid_argument, str_cat("rollback_restore: offset ", std::to_string(at), ": ", what)};
 }
 
 }  // namespace
@@ -79,19 +71,19 @@ Status rollback_restore(WorldId world, const RollbackBuffer& buffer) {
   const uint8_t* data = buffer.image.data();
   const size_t size = buffer.image.size();
   if (size < k_hashed_from) {
-    return refuse(0, cat("expected ", std::to_string(k_hashed_from),
+    return refuse(0, str_cat("expected ", std::to_string(k_hashed_from),
                          " bytes of header (magic, version, broad-phase kind), ", std::to_string(size), " left"));
   }
   if (std::memcmp(data, k_rollback_magic, 4) != 0) return refuse(0, "expected magic \"TNDR\" (a compact rollback image)");
   const uint32_t version = load_u32(data + 4);
   if (version != k_rollback_format_version) {
-    return refuse(4, cat("expected rollback format version ", std::to_string(k_rollback_format_version), ", got ",
+    return refuse(4, str_cat("expected rollback format version ", std::to_string(k_rollback_format_version), ", got ",
                          std::to_string(version)));
   }
   const state_access::CompactStructureView structure{&buffer.geometries, &buffer.masses};
   std::string error;
   if (!state_access::check_compact_records(data, size, k_header_bytes, structure, &error)) {
-    return Status{StatusCode::invalid_argument, cat("rollback_restore: ", error)};
+    return Status{StatusCode::invalid_argument, str_cat("rollback_restore: ", error)};
   }
   state_access::apply_compact_records(*w, data, size, k_header_bytes, structure);
   return s;

@@ -9,10 +9,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
+#include "fixed/str_cat.h"
 #include "physics/collision.h"
 #include "physics/tandem.h"
 #include "replay/state.h"
@@ -106,17 +106,11 @@ TEST_CASE("README figures: snapshot and delta sizes of the 1000-body pile", "[re
   const auto nearest = [](long double v, long double step) {
     return std::to_string(static_cast<int64_t>(v / step + 0.5L) * static_cast<int64_t>(step));
   };
-  // (Built with append: g++ 12's -Wrestrict misfires on "literal" + string.)
-  const auto quote = [](std::initializer_list<std::string> parts) {
-    std::string out;
-    for (const std::string& p : parts) out.append(p);
-    return out;
-  };
-  readme::check_quotes(quote({"~", nearest(stats.pairs, 50), " contacts, ", nearest(stats.touching_pairs, 50),
-                              " of them touching"}));
-  readme::check_quotes(quote({"the full image is ", nearest(per_body, 1), " bytes per moving body"}));
+  readme::check_quotes(str_cat("~", nearest(stats.pairs, 50), " contacts, ", nearest(stats.touching_pairs, 50),
+                               " of them touching"));
+  readme::check_quotes(str_cat("the full image is ", nearest(per_body, 1), " bytes per moving body"));
   readme::check_quotes(
-      quote({"about ", nearest(contact_share * 100, 5), " % of it is contact manifolds and impulses"}));
-  readme::check_quotes(quote({"brings a rollback snapshot to ", nearest(delta_per_body[0], 10), "–",
-                              nearest(delta_per_body[1], 10), " bytes per body 1–8 ticks after its base"}));
+      str_cat("about ", nearest(contact_share * 100, 5), " % of it is contact manifolds and impulses"));
+  readme::check_quotes(str_cat("brings a rollback snapshot to ", nearest(delta_per_body[0], 10), "–",
+                               nearest(delta_per_body[1], 10), " bytes per body 1–8 ticks after its base"));
 }
