@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "../physics/physics_test_support.h"
 #include "physics/tandem.h"
 #include "replay/state.h"
 
@@ -37,45 +38,23 @@ struct SleepingRun {
 SleepingRun run_sleeping_world(int32_t workers, int32_t steps, int32_t restore_every) {
   WorldDef wd = default_world_def();
   wd.worker_count = workers;
-  const Result<WorldId> w = create_world(wd);
-  REQUIRE(w.ok());
-  const WorldId world = w.value;
-  {
-    BodyDef gd = default_body_def();
-    gd.position = {0_q32, -1_q32};
-    const Result<BodyId> g = create_body(world, gd);
-    REQUIRE(g.ok());
-    Polygon ground;
-    REQUIRE(make_box(100_q32, 1_q32, &ground).ok());
-    REQUIRE(create_polygon_shape(g.value, default_shape_def(), ground).ok());
-  }
-  Polygon box;
-  REQUIRE(make_box(0.25_q32, 0.25_q32, &box).ok());
+  test_support::ScopedWorld scoped(wd);
+  const WorldId world = scoped.id;
+  test_support::add_box_body(world, test_support::body_def_at({0_q32, -1_q32}, BodyType::static_body), 100_q32, 1_q32);
   std::vector<BodyId> block;
   for (int32_t c = 0; c < k_columns; ++c) {
     for (int32_t r = 0; r < k_rows; ++r) {
-      BodyDef bd = default_body_def();
-      bd.type = BodyType::dynamic_body;
-      bd.position = {Q32::from_ratio(c, 2), Q32::from_ratio(2 * r + 1, 4)};
+      BodyDef bd = test_support::body_def_at({Q32::from_ratio(c, 2), Q32::from_ratio(2 * r + 1, 4)});
       bd.is_awake = false;
-      const Result<BodyId> b = create_body(world, bd);
-      REQUIRE(b.ok());
-      REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-      block.push_back(b.value);
+      block.push_back(test_support::add_box_body(world, bd, 0.25_q32, 0.25_q32));
     }
   }
   for (int32_t i = 0; i < 5; ++i) {  // an awake stack far from the block
-    BodyDef bd = default_body_def();
-    bd.type = BodyType::dynamic_body;
-    bd.position = {-30_q32, Q32::from_ratio(2 * i + 1, 4)};
-    const Result<BodyId> b = create_body(world, bd);
-    REQUIRE(b.ok());
-    REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
+    test_support::add_box_body(world, test_support::body_def_at({-30_q32, Q32::from_ratio(2 * i + 1, 4)}), 0.25_q32,
+                               0.25_q32);
   }
   {
-    BodyDef bd = default_body_def();
-    bd.type = BodyType::dynamic_body;
-    bd.position = {-4_q32, 0.5_q32};
+    BodyDef bd = test_support::body_def_at({-4_q32, 0.5_q32});
     bd.linear_velocity = {4_q32, 0_q32};
     const Result<BodyId> ball = create_body(world, bd);
     REQUIRE(ball.ok());
@@ -104,7 +83,6 @@ SleepingRun run_sleeping_world(int32_t workers, int32_t steps, int32_t restore_e
     }
   }
   for (BodyId b : block) run.block_woke = run.block_woke || body_is_awake(b);
-  REQUIRE(destroy_world(world).ok());
   return run;
 }
 

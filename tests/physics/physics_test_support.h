@@ -22,6 +22,25 @@ struct ScopedWorld : UniqueWorld {
   explicit ScopedWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
 };
 
+/// A body definition of `type` at `position`, otherwise default.
+inline BodyDef body_def_at(Vec2 position, BodyType type = BodyType::dynamic_body) {
+  BodyDef def = default_body_def();
+  def.type = type;
+  def.position = position;
+  return def;
+}
+
+/// A body made from `def` carrying one box of half-extents `hx` × `hy`, m
+/// (default shape def); the test fails where either is refused.
+inline BodyId add_box_body(WorldId world, const BodyDef& def, Q32 hx, Q32 hy) {
+  const Result<BodyId> body = create_body(world, def);
+  REQUIRE(body.ok());
+  Polygon box;
+  REQUIRE(make_box(hx, hy, &box).ok());
+  REQUIRE(create_polygon_shape(body.value, default_shape_def(), box).ok());
+  return body.value;
+}
+
 /// A single-threaded task system that runs each task's items one at a time
 /// from the last to the first (WorldDef::enqueue_task / finish_task with
 /// user_task_context = &a ReversingTasks).

@@ -33,33 +33,18 @@ void add_static_line(WorldId w, Vec2 p1, Vec2 p2, bool chain) {
 }
 
 /// A static ground box whose top face is at y = -2.
-void add_ground(WorldId w) {
-  BodyDef bd = default_body_def();
-  bd.position = {0_q32, -3_q32};
-  const Result<BodyId> b = create_body(w, bd);
-  REQUIRE(b.ok());
-  Polygon box;
-  REQUIRE(make_box(10_q32, 1_q32, &box).ok());
-  REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-}
+void add_ground(WorldId w) { add_box_body(w, body_def_at({0_q32, -3_q32}, BodyType::static_body), 10_q32, 1_q32); }
 
 /// A dynamic body at (0, 0.5) falling at 20 m/s (1/3 m per step: fast for
 /// continuous collision) carrying a 1 m horizontal segment (segment = true;
 /// its mass is the default 1 kg) or a 0.5 m box.
 BodyId add_falling_body(WorldId w, bool segment) {
-  BodyDef bd = default_body_def();
-  bd.type = BodyType::dynamic_body;
-  bd.position = {0_q32, 0.5_q32};
+  BodyDef bd = body_def_at({0_q32, 0.5_q32});
   bd.linear_velocity = {0_q32, -20_q32};
+  if (!segment) return add_box_body(w, bd, 0.25_q32, 0.25_q32);
   const Result<BodyId> b = create_body(w, bd);
   REQUIRE(b.ok());
-  if (segment) {
-    REQUIRE(create_segment_shape(b.value, default_shape_def(), Segment{{-0.5_q32, 0_q32}, {0.5_q32, 0_q32}}).ok());
-  } else {
-    Polygon box;
-    REQUIRE(make_box(0.25_q32, 0.25_q32, &box).ok());
-    REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-  }
+  REQUIRE(create_segment_shape(b.value, default_shape_def(), Segment{{-0.5_q32, 0_q32}, {0.5_q32, 0_q32}}).ok());
   return b.value;
 }
 

@@ -20,25 +20,13 @@ namespace {
 /// A pyramid of `base` rows of unit boxes on a static ground (sleep off, so
 /// every step has work for several blocks).
 std::vector<BodyId> build_pyramid(WorldId w, int base) {
-  BodyDef ground = default_body_def();
-  ground.position = {0_q32, -1_q32};
-  const Result<BodyId> g = create_body(w, ground);
-  REQUIRE(g.ok());
-  Polygon box;
-  REQUIRE(make_box(100_q32, 1_q32, &box).ok());
-  REQUIRE(create_polygon_shape(g.value, default_shape_def(), box).ok());
-  REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
+  add_box_body(w, body_def_at({0_q32, -1_q32}, BodyType::static_body), 100_q32, 1_q32);
   std::vector<BodyId> bodies;
   for (int row = 0; row < base; ++row) {
     for (int k = 0; k < base - row; ++k) {
-      BodyDef def = default_body_def();
-      def.type = BodyType::dynamic_body;
-      def.position = {Q32::from_int(k) - Q32::from_ratio(base - row - 1, 2) + Q32::from_ratio(row, 7),
+      const Vec2 p = {Q32::from_int(k) - Q32::from_ratio(base - row - 1, 2) + Q32::from_ratio(row, 7),
                       Q32::from_int(row) + 0.5_q32};
-      const Result<BodyId> b = create_body(w, def);
-      REQUIRE(b.ok());
-      REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-      bodies.push_back(b.value);
+      bodies.push_back(add_box_body(w, body_def_at(p), 0.5_q32, 0.5_q32));
     }
   }
   return bodies;
