@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "physics/body.h"
+#include "physics/fast_math.h"
 #include "physics/shape.h"
 #include "physics/world.h"
 
@@ -288,13 +289,44 @@ ShapeId make_shape_id(const World& world, int32_t index) {
   return id;
 }
 
+namespace {
+
+/// The bounds of points p_i (body frame) under xf, grown by r: the same bits
+/// as collision.h's compute_*_aabb (which take any transform and report
+/// faults), through fast_math.h. Range: a shape's points lie within
+/// k_max_shape_size (10^4 m) of its body's origin and xf's rotation is a unit
+/// vector, so a rotated coordinate is below 1.5·10^4 m and adding a position
+/// within the world's range (≤ 2·10^6 m) cannot saturate.
+AABB transformed_bounds(const Vec2* points, int32_t count, Q32 r, Transform xf) {
+  Vec2 lo = fast::transform_point(xf, points[0]);
+  Vec2 hi = lo;
+  for (int32_t i = 1; i < count; ++i) {
+    const Vec2 v = fast::transform_point(xf, points[i]);
+    lo = min(lo, v);
+    hi = max(hi, v);
+  }
+  const Vec2 rr{r, r};
+  return {fast::sub(lo, rr), fast::add(hi, rr)};
+}
+
+}  // namespace
+
 AABB compute_shape_aabb(const ShapeGeometry& g, Transform xf) {
   switch (g.type) {
-    case ShapeType::circle: return compute_circle_aabb(g.circle, xf);
-    case ShapeType::capsule: return compute_capsule_aabb(g.capsule, xf);
-    case ShapeType::segment: return compute_segment_aabb(g.segment, xf);
-    case ShapeType::polygon: return compute_polygon_aabb(g.polygon, xf);
-    case ShapeType::chain_segment: return compute_chain_segment_aabb(g.chain_segment, xf);
+    case ShapeType::circle: return transformed_bounds(&g.circle.center, 1, g.circle.radius, xf);
+    case ShapeType::capsule: {
+      const Vec2 centres[2] = {g.capsule.center1, g.capsule.center2};
+      return transformed_bounds(centres, 2, g.capsule.radius, xf);
+    }
+    case ShapeType::segment: {
+      const Vec2 ends[2] = {g.segment.point1, g.segment.point2};
+      return transformed_bounds(ends, 2, Q32::zero(), xf);
+    }
+    case ShapeType::polygon: return transformed_bounds(g.polygon.vertices.data(), g.polygon.count, g.polygon.radius, xf);
+    case ShapeType::chain_segment: {
+      const Vec2 ends[2] = {g.chain_segment.segment.point1, g.chain_segment.segment.point2};
+      return transformed_bounds(ends, 2, Q32::zero(), xf);
+    }
     case ShapeType::count: break;
   }
   return AABB{};

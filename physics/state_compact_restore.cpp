@@ -16,6 +16,8 @@
 // [-2000000, 2000000] m".
 #include "physics/state_compact.h"
 
+#include "fixed/str_cat.h"
+
 namespace tandem::state_access {
 
 using namespace compact_detail;
@@ -128,9 +130,11 @@ class Decoder {
     if (n <= size_ - pos_) [[likely]] {
       return true;
     }
-    fail(pos_, std::string("expected ") + std::to_string(n) + " bytes of " + what + ", " +
-                   std::to_string(size_ - pos_) + " left");
+    refuse_short(n, what);
     return false;
+  }
+  [[gnu::cold, gnu::noinline]] void refuse_short(size_t n, const char* what) {
+    fail(pos_, str_cat("expected ", std::to_string(n), " bytes of ", what, ", ", std::to_string(size_ - pos_), " left"));
   }
   // Unchecked little-endian loads (after need()).
   uint8_t u8() { return data_[pos_++]; }
