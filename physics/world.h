@@ -122,6 +122,10 @@ struct World {
   /// enabled, not static) at the start of the step — every contact that is
   /// not carried over asleep (contact.cpp, "Awake contacts").
   std::vector<int32_t> awake_contacts;
+  /// Derived with awake_contacts: true when every contact has a simulated
+  /// body, so the index is the whole list and is left empty (not written;
+  /// awake_contact_count, for_each_awake_contact).
+  bool awake_contacts_all = false;
   /// Counts calls that may wake a body (wake_body_island, wake_all_bodies;
   /// island.cpp). Not state; only compared with awake_contacts_wake_count.
   uint64_t wake_count = 0;
@@ -160,12 +164,18 @@ struct World {
 /// site for the visitor, so it is inlined.
 template <typename Visit>
 void for_each_awake_contact(World& world, Visit&& visit) {
-  const bool use_index = world.wake_count == world.awake_contacts_wake_count &&
+  const bool use_index = world.wake_count == world.awake_contacts_wake_count && !world.awake_contacts_all &&
                          world.awake_contacts.size() < world.contacts.size();
   const int32_t* index = use_index ? world.awake_contacts.data() : nullptr;
   const int32_t count = static_cast<int32_t>(use_index ? world.awake_contacts.size() : world.contacts.size());
   world.contacts_read_after_update += count;
   for (int32_t k = 0; k < count; ++k) visit(index != nullptr ? index[k] : k);
+}
+
+/// The number of contacts with a simulated body at the start of the step
+/// (World::awake_contacts, or every contact while awake_contacts_all).
+inline int32_t awake_contact_count(const World& world) {
+  return static_cast<int32_t>(world.awake_contacts_all ? world.contacts.size() : world.awake_contacts.size());
 }
 
 /// The live world of a handle, or null.
