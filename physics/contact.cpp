@@ -175,13 +175,22 @@ void update_contacts(World* world) {
   // most steps of a resting pile): no list is rebuilt and the carried-over
   // contacts are not copied. Same contents as the merge below, which would
   // keep every contact in its slot.
+  // (id_pool_generation's test written once: a slot outside the pool has
+  // generation 0.)
+  const uint32_t* generations = world->shape_pool.generations.data();
+  const uint32_t shape_capacity = static_cast<uint32_t>(id_pool_capacity(world->shape_pool));
+  const auto generation_of = [generations, shape_capacity](int32_t shape) {
+    return static_cast<uint32_t>(shape) < shape_capacity ? generations[static_cast<uint32_t>(shape)] : 0u;
+  };
   bool in_place = pairs.size() == old_list.size();
-  for (size_t i = 0; in_place && i < pairs.size(); ++i) {
+  for (size_t i = 0, n = in_place ? pairs.size() : 0; i < n; ++i) {
     const ShapePair& pair = pairs[i];
     const Contact& c = old_list[i];
-    in_place = c.shape_a == pair.shape_a && c.shape_b == pair.shape_b &&
-               c.generation_a == id_pool_generation(world->shape_pool, pair.shape_a) &&
-               c.generation_b == id_pool_generation(world->shape_pool, pair.shape_b);
+    if ((c.shape_a != pair.shape_a) | (c.shape_b != pair.shape_b) | (c.generation_a != generation_of(pair.shape_a)) |
+        (c.generation_b != generation_of(pair.shape_b))) {
+      in_place = false;
+      break;
+    }
   }
   const auto simulated = [world](int32_t body) {
     return body_is_simulated(world->bodies[static_cast<size_t>(body)]);
@@ -265,8 +274,8 @@ void update_contacts(World* world) {
     const auto old_key = [&old_list](size_t i) { return shape_pair_key(old_list[i].shape_a, old_list[i].shape_b); };
     while (cursor < old_list.size() && old_key(cursor) < key) ++cursor;  // destroyed
     const Contact* old = nullptr;
-    const uint32_t gen_a = id_pool_generation(world->shape_pool, pair.shape_a);
-    const uint32_t gen_b = id_pool_generation(world->shape_pool, pair.shape_b);
+    const uint32_t gen_a = generation_of(pair.shape_a);
+    const uint32_t gen_b = generation_of(pair.shape_b);
     if (cursor < old_list.size() && old_key(cursor) == key) {
       const Contact& candidate = old_list[cursor];
       if (candidate.generation_a == gen_a && candidate.generation_b == gen_b) old = &candidate;
