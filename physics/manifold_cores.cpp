@@ -49,10 +49,16 @@ Core transform_core(const Core& c, Transform xf) {
   return t;
 }
 
-/// Smallest signed distance of `other`'s vertices along `axis` from `origin`.
-Q32 min_along(Vec2 axis, Vec2 origin, const Core& other) {
+/// Smallest signed distance of `other`'s vertices along `axis` from `origin`;
+/// stops at the first vertex that brings it to `stop_at` or below (the
+/// result is then ≤ stop_at, not the minimum). The differences are exact
+/// narrow_math subtractions (coordinates below 2^53 raw, manifold_internal.h).
+Q32 min_along(Vec2 axis, Vec2 origin, const Core& other, Q32 stop_at) {
   Q32 s = Q32::max();
-  for (int32_t j = 0; j < other.count; ++j) s = min(s, nm::dot(axis, other.vertices[sz(j)] - origin));
+  for (int32_t j = 0; j < other.count; ++j) {
+    s = min(s, nm::dot(axis, nm::sub(other.vertices[sz(j)], origin)));
+    if (s <= stop_at) break;
+  }
   return s;
 }
 
@@ -62,7 +68,10 @@ Q32 max_separation(const Core& c1, const Core& c2, int32_t* out_edge) {
   Q32 best = Q32::min();
   int32_t best_edge = 0;
   for (int32_t i = 0; i < c1.count; ++i) {
-    const Q32 s = min_along(c1.normals[sz(i)], c1.vertices[sz(i)], c2);
+    // An edge whose running minimum falls to `best` cannot win (s > best is
+    // needed), so min_along may stop there: the same edge and value as the
+    // full minima.
+    const Q32 s = min_along(c1.normals[sz(i)], c1.vertices[sz(i)], c2, best);
     if (s > best) {
       best = s;
       best_edge = i;
@@ -170,7 +179,7 @@ inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_
   for (int32_t k = 0; k < count; ++k) {
     const Clipped& c = pts[sz(k)];
     const Q32 s = c.s;
-    const Vec2 mid = nm::mul_add(c.p, nm::sub(nm::sub(e.ref_radius, e.inc_radius), s) / 2, n);
+    const Vec2 mid = nm::mul_add(c.p, nm::half(nm::sub(nm::sub(e.ref_radius, e.inc_radius), s)), n);
     const uint16_t id = ref_is_b ? make_feature_id(c.inc_vertex, c.ref_vertex) : make_feature_id(c.ref_vertex, c.inc_vertex);
     add_point(m, mid, nm::sub(s, radius), id);
   }
