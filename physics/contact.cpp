@@ -107,8 +107,8 @@ void update_manifold(const World& world, Contact* c, const Manifold* previous, c
   const size_t sb = static_cast<size_t>(c->shape_b);
   const Shape& shape_a = world.shapes[sa];
   const Shape& shape_b = world.shapes[sb];
-  const Transform xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
-  const Transform xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
+  const Transform& xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
+  const Transform& xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
   if (previous != nullptr && (c->flags & k_contact_touching) != 0) {
     collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, *previous, &c->manifold);
   } else {
