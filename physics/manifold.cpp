@@ -73,6 +73,11 @@
 //   (each clipped point is filtered on its own, so a tilted box can report
 //   one point).
 //
+// * Shortcuts that change no bit: the SAT stops an edge's minimum once it
+//   falls to the best edge so far (that edge cannot win: max_separation);
+//   two round points farther apart than their radii plus the margin are
+//   rejected on the exact squared distance before the root (collide_points).
+//
 // * Feature ids. make_feature_id(feature on A, feature on B) with vertex
 //   indices: a clipped point gets (reference vertex, incident vertex) with the
 //   reference edge's start vertex for the point clipped at its start side, so

@@ -120,7 +120,8 @@ struct World {
   /// restored; a restored world rebuilds it in its next step): indices into
   /// `contacts`, ascending, of the contacts with a simulated body (awake,
   /// enabled, not static) at the start of the step — every contact that is
-  /// not carried over asleep (contact.cpp, "Awake contacts").
+  /// not carried over asleep (contact.cpp, "Awake contacts"). Left empty
+  /// while awake_contacts_all (every contact has a simulated body).
   std::vector<int32_t> awake_contacts;
   /// Derived with awake_contacts: true when every contact has a simulated
   /// body, so the index is the whole list and is left empty (not written;
@@ -158,7 +159,7 @@ struct World {
 /// Calls visit(contact index) in ascending index for every contact that may
 /// have a simulated body: the awake index (World::awake_contacts) while it is
 /// complete — no body woke since update_contacts built it (wake_count) — and
-/// shorter than the list, otherwise every contact. The visitor applies its
+/// shorter than the list (not awake_contacts_all), otherwise every contact. The visitor applies its
 /// own test either way (a contact left out has no simulated body), so both
 /// give the same results; only the number of contacts read differs. One call
 /// site for the visitor, so it is inlined.
