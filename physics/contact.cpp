@@ -186,8 +186,8 @@ void update_contacts(World* world) {
   for (size_t i = 0, n = in_place ? pairs.size() : 0; i < n; ++i) {
     const ShapePair& pair = pairs[i];
     const Contact& c = old_list[i];
-    if ((c.shape_a != pair.shape_a) | (c.shape_b != pair.shape_b) | (c.generation_a != generation_of(pair.shape_a)) |
-        (c.generation_b != generation_of(pair.shape_b))) {
+    if (c.shape_a != pair.shape_a || c.shape_b != pair.shape_b || c.generation_a != generation_of(pair.shape_a) ||
+        c.generation_b != generation_of(pair.shape_b)) {
       in_place = false;
       break;
     }
