@@ -365,7 +365,7 @@ BroadPhaseStats world_broad_phase_stats(WorldId id) {
     if ((c.flags & k_contact_touching) != 0) ++touching;
   }
   stats.touching_pairs = touching;
-  stats.awake_contacts = static_cast<int32_t>(world->awake_contacts.size());
+  stats.awake_contacts = awake_contact_count(*world);
   stats.contacts_read_after_update = world->contacts_read_after_update;
   return stats;
 }

@@ -33,7 +33,9 @@
 // Awake contacts: the update also lists, in World::awake_contacts, the
 // contacts with a simulated body (ascending index), which the later stages
 // walk instead of the whole list while no body woke (for_each_awake_contact,
-// world.h). When the pairs are exactly the old contacts' keys and
+// world.h). While every contact has a simulated body (nothing asleep, the
+// usual case) the list is not written: World::awake_contacts_all says the
+// index is the whole list (awake_contact_count, world.h). When the pairs are exactly the old contacts' keys and
 // generations the list is updated in place (no contact copied) and
 // World::contact_set_unchanged tells events_after_step whether any touching
 // flag changed. Both are derived every step, never state, so a restored
@@ -44,6 +46,7 @@
 // first steps of a scene no allocation happens here.
 #include "physics/contact.h"
 
+#include <array>
 #include <utility>
 
 #include "physics/broad_phase.h"
@@ -74,36 +77,75 @@ Q32 mix_restitution(Q32 a, Q32 b) { return max(a, b); }
 
 namespace {
 
-/// Recomputes the manifold of `c` and carries impulses from `old` (the same
-/// contact last step, or null) by feature id.
-void update_manifold(const World& world, Contact* c, const Contact* old) {
+/// What warm starting needs of a contact's previous step: its point ids and
+/// impulses (a copy, so the manifold can be rewritten in place).
+struct PreviousPoints {
+  int32_t count = 0;
+  std::array<uint16_t, 2> ids{};
+  std::array<Q32, 2> normal_impulse{};
+  std::array<Q32, 2> tangent_impulse{};
+};
+
+inline PreviousPoints previous_points(const Contact& c) {
+  PreviousPoints p;
+  p.count = c.manifold.point_count;
+  p.ids = {c.manifold.points[0].id, c.manifold.points[1].id};
+  p.normal_impulse = c.normal_impulse;
+  p.tangent_impulse = c.tangent_impulse;
+  return p;
+}
+
+/// Recomputes the manifold of `c` (whose key, generations, bodies and flags
+/// are set) and writes every other field of it — manifold, friction,
+/// restitution, impulses, the touching flag — so a contact updated in its
+/// own slot ends with the same bytes as a fresh zeroed one (the merge path).
+/// `previous` is last step's manifold (null for a new contact; it may be
+/// c->manifold itself: collide_persistent reads it before writing) and
+/// `old` its points and impulses, carried to the new points by feature id.
+void update_manifold(const World& world, Contact* c, const Manifold* previous, const PreviousPoints& old) {
   const size_t sa = static_cast<size_t>(c->shape_a);
   const size_t sb = static_cast<size_t>(c->shape_b);
   const Shape& shape_a = world.shapes[sa];
   const Shape& shape_b = world.shapes[sb];
-  const Transform xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
-  const Transform xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
-  if (old != nullptr && (old->flags & k_contact_touching) != 0) {
-    collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, old->manifold, &c->manifold);
+  const Transform& xf_a = world.body_sims[static_cast<size_t>(shape_a.body_index)].transform;
+  const Transform& xf_b = world.body_sims[static_cast<size_t>(shape_b.body_index)].transform;
+  if (previous != nullptr && (c->flags & k_contact_touching) != 0) {
+    collide_persistent(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b, *previous, &c->manifold);
   } else {
     c->manifold = collide(world.shape_geometries[sa], xf_a, world.shape_geometries[sb], xf_b);
   }
   c->friction = mix_friction_inline(shape_a.friction, shape_b.friction);
   c->restitution = max(shape_a.restitution, shape_b.restitution);  // mix_restitution
-  c->normal_impulse = {};
-  c->tangent_impulse = {};
   const int32_t count = c->manifold.point_count;
   c->flags = count > 0 ? (c->flags | k_contact_touching) : (c->flags & ~k_contact_touching);
-  if (old == nullptr) return;
-  for (int32_t i = 0; i < count; ++i) {
-    const uint16_t id = c->manifold.points[static_cast<size_t>(i)].id;
-    for (int32_t j = 0; j < old->manifold.point_count; ++j) {
-      if (old->manifold.points[static_cast<size_t>(j)].id != id) continue;
-      c->normal_impulse[static_cast<size_t>(i)] = old->normal_impulse[static_cast<size_t>(j)];
-      c->tangent_impulse[static_cast<size_t>(i)] = old->tangent_impulse[static_cast<size_t>(j)];
-      break;
+  for (size_t i = 0; i < 2; ++i) {
+    Q32 normal{}, tangent{};
+    if (static_cast<int32_t>(i) < count) {
+      const uint16_t id = c->manifold.points[i].id;
+      for (int32_t j = 0; j < old.count; ++j) {
+        if (old.ids[static_cast<size_t>(j)] != id) continue;
+        normal = old.normal_impulse[static_cast<size_t>(j)];
+        tangent = old.tangent_impulse[static_cast<size_t>(j)];
+        break;
+      }
     }
+    c->normal_impulse[i] = normal;
+    c->tangent_impulse[i] = tangent;
   }
+}
+
+/// Sets the fields that name a contact (key, generations, bodies) and its
+/// carried flags; update_manifold writes the rest. The merge path calls it
+/// on a zeroed slot; the in-place path keeps these fields as they are.
+inline void set_contact_identity(Contact* c, const ShapePair& pair, uint32_t gen_a, uint32_t gen_b, int32_t body_a,
+                                 int32_t body_b, uint32_t flags) {
+  c->shape_a = pair.shape_a;
+  c->shape_b = pair.shape_b;
+  c->generation_a = gen_a;
+  c->generation_b = gen_b;
+  c->body_a = body_a;
+  c->body_b = body_b;
+  c->flags = flags;
 }
 
 }  // namespace
@@ -133,13 +175,22 @@ void update_contacts(World* world) {
   // most steps of a resting pile): no list is rebuilt and the carried-over
   // contacts are not copied. Same contents as the merge below, which would
   // keep every contact in its slot.
+  // (id_pool_generation's test written once: a slot outside the pool has
+  // generation 0.)
+  const uint32_t* generations = world->shape_pool.generations.data();
+  const uint32_t shape_capacity = static_cast<uint32_t>(id_pool_capacity(world->shape_pool));
+  const auto generation_of = [generations, shape_capacity](int32_t shape) {
+    return static_cast<uint32_t>(shape) < shape_capacity ? generations[static_cast<uint32_t>(shape)] : 0u;
+  };
   bool in_place = pairs.size() == old_list.size();
-  for (size_t i = 0; in_place && i < pairs.size(); ++i) {
+  for (size_t i = 0, n = in_place ? pairs.size() : 0; i < n; ++i) {
     const ShapePair& pair = pairs[i];
     const Contact& c = old_list[i];
-    in_place = c.shape_a == pair.shape_a && c.shape_b == pair.shape_b &&
-               c.generation_a == id_pool_generation(world->shape_pool, pair.shape_a) &&
-               c.generation_b == id_pool_generation(world->shape_pool, pair.shape_b);
+    if (c.shape_a != pair.shape_a || c.shape_b != pair.shape_b || c.generation_a != generation_of(pair.shape_a) ||
+        c.generation_b != generation_of(pair.shape_b)) {
+      in_place = false;
+      break;
+    }
   }
   const auto simulated = [world](int32_t body) {
     return body_is_simulated(world->bodies[static_cast<size_t>(body)]);
@@ -153,36 +204,42 @@ void update_contacts(World* world) {
     for (int32_t b = 0; b < body_count; ++b) {
       moving[b] = id_pool_is_alive(world->body_pool, b) && simulated(b) ? 1 : 0;
     }
+    // The awake index, only once a contact without a simulated body turns
+    // up (before it every contact is awake; with none, awake_contacts_all).
     const int32_t count = static_cast<int32_t>(old_list.size());
-    for (int32_t i = 0; i < count; ++i) {
-      const Contact& c = old_list[static_cast<size_t>(i)];
-      if (moving[c.body_a] != 0 || moving[c.body_b] != 0) awake.push_back(i);
+    int32_t first_still = 0;
+    while (first_still < count && (moving[old_list[static_cast<size_t>(first_still)].body_a] |
+                                   moving[old_list[static_cast<size_t>(first_still)].body_b]) != 0) {
+      ++first_still;
     }
-    // The narrow phase over the awake contacts, each from a copy of itself
-    // (its old contact), rebuilt from zero as the merge path builds it.
-    const int32_t awake_count = static_cast<int32_t>(awake.size());
+    const bool all = first_still == count;
+    world->awake_contacts_all = all;
+    if (!all) {
+      for (int32_t i = 0; i < first_still; ++i) awake.push_back(i);
+      for (int32_t i = first_still + 1; i < count; ++i) {
+        const Contact& c = old_list[static_cast<size_t>(i)];
+        if ((moving[c.body_a] | moving[c.body_b]) != 0) awake.push_back(i);
+      }
+    }
+    // The narrow phase over the awake contacts, each in its own slot: the
+    // key, generations, bodies and flags stay (set_contact_identity's
+    // fields), update_manifold writes every other field from last step's
+    // points, as the merge path does for a zeroed slot.
+    const int32_t awake_count = all ? count : static_cast<int32_t>(awake.size());
     const int32_t blocks = block_count_of(awake_count, k_contact_block);
     uint8_t* flipped = arena_allocate_array<uint8_t>(arena, blocks, "contact_touching_flipped");
     Contact* slots = old_list.data();
-    const int32_t* index = awake.data();
+    const int32_t* index = all ? nullptr : awake.data();
     parallel_for(&world->tasks, "narrow_phase", awake_count, k_contact_block,
                  [&w, slots, index, flipped](int32_t begin, int32_t end) {
-                   uint8_t changed = 0;
+                   uint32_t changed = 0;
                    for (int32_t k = begin; k < end; ++k) {
-                     Contact& c = slots[index[k]];
-                     const Contact old = c;
-                     c = Contact{};
-                     c.shape_a = old.shape_a;
-                     c.shape_b = old.shape_b;
-                     c.generation_a = old.generation_a;
-                     c.generation_b = old.generation_b;
-                     c.body_a = old.body_a;
-                     c.body_b = old.body_b;
-                     c.flags = old.flags;
-                     update_manifold(w, &c, &old);
-                     changed |= static_cast<uint8_t>(((c.flags ^ old.flags) & k_contact_touching) != 0 ? 1 : 0);
+                     Contact& c = slots[index != nullptr ? index[k] : k];
+                     const uint32_t old_flags = c.flags;
+                     update_manifold(w, &c, &c.manifold, previous_points(c));
+                     changed |= (c.flags ^ old_flags) & k_contact_touching;
                    }
-                   flipped[begin / k_contact_block] = changed;
+                   flipped[begin / k_contact_block] = changed != 0 ? 1 : 0;
                  });
     bool unchanged = true;
     for (int32_t k = 0; k < blocks; ++k) unchanged = unchanged && flipped[k] == 0;
@@ -197,6 +254,19 @@ void update_contacts(World* world) {
   next.clear();
   // Per new contact: the index of its old contact, or a k_* mark above.
   int32_t* old_of = arena_allocate_array<int32_t>(arena, static_cast<int32_t>(pairs.size()), "contact_old_index");
+  // The awake index is written only once a contact without a simulated body
+  // turns up (the ones before it are filled in then); while every contact
+  // has one it stays empty and awake_contacts_all says so.
+  bool all = true;
+  const auto note_awake = [&](bool moves) {
+    const int32_t index = static_cast<int32_t>(next.size());
+    if (all && !moves) {
+      all = false;
+      for (int32_t k = 0; k < index; ++k) awake.push_back(k);
+    } else if (!all && moves) {
+      awake.push_back(index);
+    }
+  };
   size_t cursor = 0;
   for (const ShapePair& pair : pairs) {
     const uint64_t key = shape_pair_key(pair.shape_a, pair.shape_b);
@@ -204,8 +274,8 @@ void update_contacts(World* world) {
     const auto old_key = [&old_list](size_t i) { return shape_pair_key(old_list[i].shape_a, old_list[i].shape_b); };
     while (cursor < old_list.size() && old_key(cursor) < key) ++cursor;  // destroyed
     const Contact* old = nullptr;
-    const uint32_t gen_a = id_pool_generation(world->shape_pool, pair.shape_a);
-    const uint32_t gen_b = id_pool_generation(world->shape_pool, pair.shape_b);
+    const uint32_t gen_a = generation_of(pair.shape_a);
+    const uint32_t gen_b = generation_of(pair.shape_b);
     if (cursor < old_list.size() && old_key(cursor) == key) {
       const Contact& candidate = old_list[cursor];
       if (candidate.generation_a == gen_a && candidate.generation_b == gen_b) old = &candidate;
@@ -214,6 +284,10 @@ void update_contacts(World* world) {
     const int32_t body_a = world->shapes[static_cast<size_t>(pair.shape_a)].body_index;
     const int32_t body_b = world->shapes[static_cast<size_t>(pair.shape_b)].body_index;
     const bool moves = simulated(body_a) || simulated(body_b);
+    // A new contact between two bodies that do not move is still computed
+    // (it has no manifold yet) but is not an awake contact: no stage after
+    // this one has work for it (no constraint, no wake, no island).
+    note_awake(moves);
     if (old != nullptr && !moves) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
@@ -221,20 +295,11 @@ void update_contacts(World* world) {
       next.push_back(*old);
       continue;
     }
-    // A new contact between two bodies that do not move is still computed
-    // (it has no manifold yet) but is not an awake contact: no stage after
-    // this one has work for it (no constraint, no wake, no island).
-    if (moves) awake.push_back(static_cast<int32_t>(next.size()));
     old_of[next.size()] = old != nullptr ? static_cast<int32_t>(old - old_list.data()) : k_no_old_contact;
     Contact& c = next.emplace_back();  // zeroed in place (no copy); the narrow phase fills the manifold
-    c.shape_a = pair.shape_a;
-    c.shape_b = pair.shape_b;
-    c.generation_a = gen_a;
-    c.generation_b = gen_b;
-    c.body_a = body_a;
-    c.body_b = body_b;
-    c.flags = old != nullptr ? old->flags : 0;
+    set_contact_identity(&c, pair, gen_a, gen_b, body_a, body_b, old != nullptr ? old->flags : 0);
   }
+  world->awake_contacts_all = all;
   // The narrow phase, per contact (see the file comment).
   Contact* slots = next.data();
   const Contact* olds = old_list.data();
@@ -243,7 +308,11 @@ void update_contacts(World* world) {
                  for (int32_t i = begin; i < end; ++i) {
                    const int32_t o = old_of[i];
                    if (o == k_carried_contact) continue;
-                   update_manifold(w, &slots[i], o >= 0 ? &olds[o] : nullptr);
+                   if (o >= 0) {
+                     update_manifold(w, &slots[i], &olds[o].manifold, previous_points(olds[o]));
+                   } else {
+                     update_manifold(w, &slots[i], nullptr, PreviousPoints{});
+                   }
                  }
                });
   arena_free(arena, old_of);

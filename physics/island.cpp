@@ -187,18 +187,19 @@ void stage_wake_touched(World* world, StepContext* context) {
   // any wake) those are exactly the awake index's contacts: the scan reads
   // only them (World::awake_contacts, in contact order), not the contacts of
   // sleeping islands.
-  const int32_t scan_count = static_cast<int32_t>(world->awake_contacts.size());
+  // (While awake_contacts_all the index is the whole list: scan it all.)
+  const int32_t scan_count = awake_contact_count(*world);
   if (sleepers > 0 && scan_count > 0) {
     world->contacts_read_after_update += scan_count;
     const int32_t scan_blocks = block_count_of(scan_count, k_wake_scan_block);
     int32_t* first_per_block = arena_allocate_array<int32_t>(arena, scan_blocks, "wake_first_per_block");
     const Contact* contacts = world->contacts.data();
-    const int32_t* scan = world->awake_contacts.data();
+    const int32_t* scan = world->awake_contacts_all ? nullptr : world->awake_contacts.data();
     parallel_for(context->tasks, "wake_touched_scan", scan_count, k_wake_scan_block,
                  [=](int32_t begin, int32_t stop) {
                    int32_t found = stop;
                    for (int32_t k = begin; k < stop; ++k) {
-                     const Contact& c = contacts[scan[k]];
+                     const Contact& c = contacts[scan != nullptr ? scan[k] : k];
                      if ((c.flags & k_contact_touching) == 0) continue;
                      const uint8_t sa = start[c.body_a], sb = start[c.body_b];
                      if ((sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others)) {
@@ -211,7 +212,7 @@ void stage_wake_touched(World* world, StepContext* context) {
     for (int32_t k = 0; k < scan_blocks; ++k) {
       const int32_t block_end = k == scan_blocks - 1 ? scan_count : (k + 1) * k_wake_scan_block;
       if (first_per_block[k] < block_end) {
-        first = scan[first_per_block[k]];
+        first = scan != nullptr ? scan[first_per_block[k]] : first_per_block[k];
         break;
       }
     }

@@ -73,6 +73,11 @@
 //   (each clipped point is filtered on its own, so a tilted box can report
 //   one point).
 //
+// * Shortcuts that change no bit: the SAT stops an edge's minimum once it
+//   falls to the best edge so far (that edge cannot win: max_separation);
+//   two round points farther apart than their radii plus the margin are
+//   rejected on the exact squared distance before the root (collide_points).
+//
 // * Feature ids. make_feature_id(feature on A, feature on B) with vertex
 //   indices: a clipped point gets (reference vertex, incident vertex) with the
 //   reference edge's start vertex for the point clipped at its start side, so
@@ -164,6 +169,13 @@ Manifold to_world(const LocalManifold& lm, Transform xf_a, Transform xf_b) {
 /// frame. `fallback` is the normal used when the core points coincide.
 void collide_points(Vec2 pa, Q32 ra, Vec2 pb, Q32 rb, Vec2 fallback, LocalManifold* m) {
   const Vec2 d = pb - pa;
+  // Far apart: no point, decided without the root. length(d) is the
+  // isqrt_round of the exact |d|² (vec2.cpp), monotone and exact on squares,
+  // so |d|² ≥ reach² with reach = ra + rb + margin (a Q32 value, radii
+  // ≤ 1e4 m: no overflow) gives length(d) ≥ reach, i.e. separation ≥ margin
+  // below: the same return, bit for bit. Squares are exact 128-bit values.
+  const Q32 reach = nm::add(nm::add(ra, rb), k_margin);
+  if (reach.raw > 0 && !wide::less_u(wide::add(square(d.x), square(d.y)), square(reach))) return;
   const Q32 separation = length(d) - ra - rb;
   if (separation >= k_margin) return;
   Vec2 n;

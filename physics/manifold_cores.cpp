@@ -38,22 +38,20 @@ Core core_from_segment(Vec2 p1, Vec2 p2, Q32 radius) {
   return c;
 }
 
+/// Moves *c by xf (B's frame → A's frame), in place.
+void transform_core_in_place(Core* c, Transform xf) {
+  for (int32_t i = 0; i < c->count; ++i) {
+    c->vertices[sz(i)] = nm::transform_point(xf, c->vertices[sz(i)]);
+    c->normals[sz(i)] = nm::rotate(xf.q, c->normals[sz(i)]);
+  }
+  c->centroid = nm::transform_point(xf, c->centroid);
+}
+
 /// The core moved by xf (B's frame → A's frame).
 Core transform_core(const Core& c, Transform xf) {
   Core t = c;
-  for (int32_t i = 0; i < c.count; ++i) {
-    t.vertices[sz(i)] = nm::transform_point(xf, c.vertices[sz(i)]);
-    t.normals[sz(i)] = nm::rotate(xf.q, c.normals[sz(i)]);
-  }
-  t.centroid = nm::transform_point(xf, c.centroid);
+  transform_core_in_place(&t, xf);
   return t;
-}
-
-/// Smallest signed distance of `other`'s vertices along `axis` from `origin`.
-Q32 min_along(Vec2 axis, Vec2 origin, const Core& other) {
-  Q32 s = Q32::max();
-  for (int32_t j = 0; j < other.count; ++j) s = min(s, nm::dot(axis, other.vertices[sz(j)] - origin));
-  return s;
 }
 
 /// The SAT over c1's edge normals: the largest, over edges, of the smallest
@@ -62,7 +60,10 @@ Q32 max_separation(const Core& c1, const Core& c2, int32_t* out_edge) {
   Q32 best = Q32::min();
   int32_t best_edge = 0;
   for (int32_t i = 0; i < c1.count; ++i) {
-    const Q32 s = min_along(c1.normals[sz(i)], c1.vertices[sz(i)], c2);
+    // An edge whose running minimum falls to `best` cannot win (s > best is
+    // needed), so min_along may stop there: the same edge and value as the
+    // full minima.
+    const Q32 s = min_along(c1.normals[sz(i)], c1.vertices[sz(i)], c2, best);
     if (s > best) {
       best = s;
       best_edge = i;
@@ -115,7 +116,7 @@ struct Projected {
 };
 
 Projected project(const ClipEdges& e) {
-  const Vec2 t = left_perp(e.normal);
+  const Vec2 t = nm::left_perp(e.normal);
   const Vec2 d1 = nm::sub(e.i1, e.r1), d2 = nm::sub(e.i2, e.r1);
   return {nm::dot(nm::sub(e.r2, e.r1), t), nm::dot(d1, t), nm::dot(d2, t), nm::dot(d1, e.normal),
           nm::dot(d2, e.normal)};
@@ -170,7 +171,7 @@ inline void clip_projected(const ClipEdges& e, const Projected& pr, bool ref_is_
   for (int32_t k = 0; k < count; ++k) {
     const Clipped& c = pts[sz(k)];
     const Q32 s = c.s;
-    const Vec2 mid = nm::mul_add(c.p, nm::sub(nm::sub(e.ref_radius, e.inc_radius), s) / 2, n);
+    const Vec2 mid = nm::mul_add(c.p, nm::half(nm::sub(nm::sub(e.ref_radius, e.inc_radius), s)), n);
     const uint16_t id = ref_is_b ? make_feature_id(c.inc_vertex, c.ref_vertex) : make_feature_id(c.ref_vertex, c.inc_vertex);
     add_point(m, mid, nm::sub(s, radius), id);
   }
@@ -324,8 +325,10 @@ using namespace manifold_detail;
 
 namespace {
 
-Manifold collide_core_pair(const Core& a, Transform xf_a, const Core& b_local, Transform xf_b) {
-  const Core b = transform_core(b_local, nm::inv_mul_transforms(xf_a, xf_b));
+/// `b` by value: the callers' fresh cores are built in place and moved to
+/// A's frame there (no second copy).
+Manifold collide_core_pair(const Core& a, Transform xf_a, Core b, Transform xf_b) {
+  transform_core_in_place(&b, nm::inv_mul_transforms(xf_a, xf_b));
   LocalManifold lm;
   collide_cores(a, b, &lm);
   return to_world(lm, xf_a, xf_b);

@@ -69,7 +69,7 @@ inline void add_point(LocalManifold* m, Vec2 point, Q32 separation, uint16_t id)
 }
 
 /// (a + b)/2 without overflow of the sum; each component rounded once.
-inline Vec2 midpoint(Vec2 a, Vec2 b) { return {a.x + (b.x - a.x) / 2, a.y + (b.y - a.y) / 2}; }
+inline Vec2 midpoint(Vec2 a, Vec2 b) { return {a.x + nm::half(b.x - a.x), a.y + nm::half(b.y - a.y)}; }
 
 /// v/|v|; false for the zero vector (normalize is scale-free, so any other
 /// vector gives a direction accurate to about a raw unit).
@@ -126,8 +126,21 @@ Core core_from_polygon(const Polygon& p);
 Core core_from_segment(Vec2 p1, Vec2 p2, Q32 radius);
 /// The core moved by xf (B's frame → A's frame).
 Core transform_core(const Core& c, Transform xf);
-/// Smallest signed distance of `other`'s vertices along `axis` from `origin`.
-Q32 min_along(Vec2 axis, Vec2 origin, const Core& other);
+/// The same, moving *c itself.
+void transform_core_in_place(Core* c, Transform xf);
+/// Smallest signed distance of `other`'s vertices along `axis` from `origin`;
+/// stops at the first vertex that brings it to `stop_at` or below (the
+/// result is then ≤ stop_at, not the minimum). The differences are exact
+/// narrow_math subtractions (coordinates below 2^53 raw, see above). Inline:
+/// the SAT calls it once per edge.
+inline Q32 min_along(Vec2 axis, Vec2 origin, const Core& other, Q32 stop_at = Q32::min()) {
+  Q32 s = Q32::max();
+  for (int32_t j = 0; j < other.count; ++j) {
+    s = min(s, nm::dot(axis, nm::sub(other.vertices[sz(j)], origin)));
+    if (s <= stop_at) break;
+  }
+  return s;
+}
 /// The SAT over c1's edge normals (lowest index wins ties).
 Q32 max_separation(const Core& c1, const Core& c2, int32_t* out_edge);
 /// For a 2-gon: the separation along its own direction (the end caps).

@@ -71,6 +71,15 @@ constexpr Q32 sub(Q32 a, Q32 b) {
 }
 constexpr Vec2 add(Vec2 a, Vec2 b) { return {add(a.x, b.x), add(a.y, b.y)}; }
 constexpr Vec2 sub(Vec2 a, Vec2 b) { return {sub(a.x, b.x), sub(a.y, b.y)}; }
+/// a / 2 rounded to nearest, ties away from zero: Q32's `a / 2` (fixed.h,
+/// magnitude (|a| + 1) >> 1, sign restored) for every raw value, without its
+/// division and sign handling: floor(a/2) plus 1 for a positive odd a.
+constexpr Q32 half(Q32 a) {
+  return Q32::from_raw((a.raw >> 1) + (a.raw > 0 ? (a.raw & 1) : 0));
+}
+/// (−v.y, v.x), the negation wrapping: fixed's left_perp except for a raw
+/// −2^63, which no unit direction has.
+constexpr Vec2 left_perp(Vec2 v) { return {Q32::from_raw(neg_raw(v.y.raw)), v.x}; }
 /// a·b, rounded half up.
 inline Q32 mul(Q32 a, Q32 b) { return Q32::from_raw(sum_products(a.raw, b.raw, 0, 0)); }
 /// a·b + c·d and a·b − c·d, rounded once, half up.

@@ -422,6 +422,7 @@ void commit_image(WorldState& state, StateImage& image) {
 void rebuild_after_restore(World* w) {
   w->contact_scratch.clear();
   w->awake_contacts.clear();  // derived: the next update_contacts rebuilds it
+  w->awake_contacts_all = false;
   w->awake_contacts_wake_count = ~uint64_t{0};
   w->contact_set_unchanged = false;
   w->joints.events.clear();

@@ -120,8 +120,13 @@ struct World {
   /// restored; a restored world rebuilds it in its next step): indices into
   /// `contacts`, ascending, of the contacts with a simulated body (awake,
   /// enabled, not static) at the start of the step — every contact that is
-  /// not carried over asleep (contact.cpp, "Awake contacts").
+  /// not carried over asleep (contact.cpp, "Awake contacts"). Left empty
+  /// while awake_contacts_all (every contact has a simulated body).
   std::vector<int32_t> awake_contacts;
+  /// Derived with awake_contacts: true when every contact has a simulated
+  /// body, so the index is the whole list and is left empty (not written;
+  /// awake_contact_count, for_each_awake_contact).
+  bool awake_contacts_all = false;
   /// Counts calls that may wake a body (wake_body_island, wake_all_bodies;
   /// island.cpp). Not state; only compared with awake_contacts_wake_count.
   uint64_t wake_count = 0;
@@ -154,18 +159,24 @@ struct World {
 /// Calls visit(contact index) in ascending index for every contact that may
 /// have a simulated body: the awake index (World::awake_contacts) while it is
 /// complete — no body woke since update_contacts built it (wake_count) — and
-/// shorter than the list, otherwise every contact. The visitor applies its
+/// shorter than the list (not awake_contacts_all), otherwise every contact. The visitor applies its
 /// own test either way (a contact left out has no simulated body), so both
 /// give the same results; only the number of contacts read differs. One call
 /// site for the visitor, so it is inlined.
 template <typename Visit>
 void for_each_awake_contact(World& world, Visit&& visit) {
-  const bool use_index = world.wake_count == world.awake_contacts_wake_count &&
+  const bool use_index = world.wake_count == world.awake_contacts_wake_count && !world.awake_contacts_all &&
                          world.awake_contacts.size() < world.contacts.size();
   const int32_t* index = use_index ? world.awake_contacts.data() : nullptr;
   const int32_t count = static_cast<int32_t>(use_index ? world.awake_contacts.size() : world.contacts.size());
   world.contacts_read_after_update += count;
   for (int32_t k = 0; k < count; ++k) visit(index != nullptr ? index[k] : k);
+}
+
+/// The number of contacts with a simulated body at the start of the step
+/// (World::awake_contacts, or every contact while awake_contacts_all).
+inline int32_t awake_contact_count(const World& world) {
+  return static_cast<int32_t>(world.awake_contacts_all ? world.contacts.size() : world.awake_contacts.size());
 }
 
 /// The live world of a handle, or null.

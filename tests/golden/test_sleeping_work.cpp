@@ -116,3 +116,52 @@ TEST_CASE("while the block sleeps, the stages after the contact update read only
   CHECK(run.most_read <= 5 * static_cast<int64_t>(run.awake_contacts));
   CHECK(run.most_read > 0);
 }
+
+TEST_CASE("a sleeper touched only by awake bodies wakes while every contact has a simulated body",
+          "[golden][sleep]") {
+  // No gravity and no static body: a box created asleep and a ball flying
+  // into it. Every contact then has a simulated body (the ball), so the
+  // contact update leaves the awake index unwritten (awake_contacts_all,
+  // contact.cpp) and the wake scan (island.cpp) must read the whole list to
+  // find the sleeper the ball touches. Same bits for 1 and 2 workers.
+  const auto run = [](int32_t workers, std::vector<uint64_t>* hashes) {
+    WorldDef wd = default_world_def();
+    wd.gravity = {0_q32, 0_q32};
+    wd.worker_count = workers;
+    const Result<WorldId> w = create_world(wd);
+    REQUIRE(w.ok());
+    Polygon box;
+    REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
+    BodyDef sleeper_def = default_body_def();
+    sleeper_def.type = BodyType::dynamic_body;
+    sleeper_def.is_awake = false;
+    const Result<BodyId> sleeper = create_body(w.value, sleeper_def);
+    REQUIRE(sleeper.ok());
+    REQUIRE(create_polygon_shape(sleeper.value, default_shape_def(), box).ok());
+    BodyDef ball_def = default_body_def();
+    ball_def.type = BodyType::dynamic_body;
+    ball_def.position = {-2_q32, 0_q32};
+    ball_def.linear_velocity = {3_q32, 0_q32};
+    const Result<BodyId> ball = create_body(w.value, ball_def);
+    REQUIRE(ball.ok());
+    REQUIRE(create_circle_shape(ball.value, default_shape_def(), Circle{{}, 0.25_q32}).ok());
+    bool counted_all = false;
+    for (int32_t i = 0; i < 60; ++i) {
+      REQUIRE(world_step(w.value, Q32::from_ratio(1, 60)).ok());
+      hashes->push_back(world_state_hash(w.value));
+      const BroadPhaseStats s = world_broad_phase_stats(w.value);
+      if (s.pairs > 0) {
+        CHECK(s.awake_contacts == s.pairs);  // the ball's contact: awake
+        counted_all = true;
+      }
+    }
+    CHECK(counted_all);
+    const bool woke = body_is_awake(sleeper.value);
+    REQUIRE(destroy_world(w.value).ok());
+    return woke;
+  };
+  std::vector<uint64_t> one, two;
+  CHECK(run(1, &one));
+  CHECK(run(2, &two));
+  CHECK(one == two);
+}

@@ -1200,6 +1200,13 @@ TEST_CASE("narrow_math: native and portable definitions agree", "[physics][manif
     REQUIRE(q_native == q_portable);
     REQUIRE(r_native == r_portable);
     REQUIRE(narrow_math::fraction(Q32::from_raw(num), Q32::from_raw(den)) == Q32::from_raw(num) / Q32::from_raw(den));
+    // Halving: Q32's a / 2 for every raw value.
+    const Q32 h = Q32::from_raw(static_cast<int64_t>(rng()));
+    REQUIRE(narrow_math::half(h) == h / 2);
+  }
+  for (const int64_t raw : {INT64_MIN, INT64_MIN + 1, int64_t{-3}, int64_t{-2}, int64_t{-1}, int64_t{0}, int64_t{1},
+                            int64_t{2}, int64_t{3}, INT64_MAX - 1, INT64_MAX}) {
+    CHECK(narrow_math::half(Q32::from_raw(raw)) == Q32::from_raw(raw) / 2);
   }
   CHECK(ties < 100);
 }
