@@ -9,7 +9,7 @@ WorldDef default_world_def() {
   WorldDef def{};
   def.gravity = {0_q32, -10_q32};
   def.sub_step_count = 4;
-  def.contact_hertz = 31_q32;
+  def.contact_hertz = 30_q32;
   def.contact_damping_ratio = 10_q32;
   def.max_contact_push_speed = 3_q32;
   def.joint_hertz = 60_q32;

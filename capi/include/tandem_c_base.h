@@ -213,7 +213,7 @@ typedef void (*tandem_finish_task_fn)(void* user_task, void* user_context);
 typedef struct tandem_world_def {
   tandem_vec2 gravity;                /**< m/s²; default (0, −10) */
   int32_t sub_step_count;             /**< default 4; 1…64 */
-  tandem_q32 contact_hertz;           /**< Hz; default 31 */
+  tandem_q32 contact_hertz;           /**< Hz; default 30 */
   tandem_q32 contact_damping_ratio;   /**< default 10 */
   tandem_q32 max_contact_push_speed;  /**< m/s; default 3 */
   tandem_q32 joint_hertz;             /**< Hz; default 60 */

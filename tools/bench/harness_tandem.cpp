@@ -1,6 +1,6 @@
 // harness_tandem.cpp — runs a benchmark scene in Tandem with one broad phase.
 //
-// The world: default_world_def() (4 sub-steps, contact 31 Hz / damping 10,
+// The world: default_world_def() (4 sub-steps, contact 30 Hz / damping 10,
 // restitution threshold 1 m/s) with the scene's gravity, sleeping off (on for
 // a scene with `sleep`: smash, whose bodies may start asleep) and the
 // chosen WorldDef::broad_phase. Bodies and shapes are made from the spec's
