@@ -80,4 +80,20 @@ T* arena_allocate_array(Arena* arena, int32_t count, const char* name) {
   return p;
 }
 
+/// `count` objects of T left unwritten (std::make_unique_for_overwrite's
+/// sense): for a hot array whose every field the caller writes before any
+/// read, where arena_allocate_array's default member initialisers would be a
+/// second full pass over it. T must be an aggregate (an implicit-lifetime
+/// type: its objects exist in the storage without a constructor call) of
+/// trivially copyable fields, so nothing but the caller's stores gives it
+/// values; reading a field before writing it is a bug (MSan would report it).
+template <typename T>
+T* arena_allocate_array_for_overwrite(Arena* arena, int32_t count, const char* name) {
+  static_assert(std::is_aggregate_v<T> && std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>,
+                "only plain records may be handed out unwritten");
+  static_assert(alignof(T) <= k_arena_alignment);
+  const int32_t n = count > 0 ? count : 0;
+  return static_cast<T*>(arena_allocate(arena, static_cast<int64_t>(sizeof(T)) * n, name));
+}
+
 }  // namespace tandem

@@ -11,8 +11,8 @@
 // colour in lanes.
 //
 // Cost: one pass over the contacts with a 32-bit colour mask per solver body:
-// ~51 instructions per constraint on x86-64 (pyramid-100, callgrind), 3.6 %
-// of the preparation's ~1,430 (docs/benchmarks.md).
+// ~51 instructions per constraint on x86-64 (pyramid-100, callgrind), 4.5 %
+// of the preparation's ~1,130 (docs/benchmarks.md).
 //
 // Rejected (for now): incremental colouring (a persistent contact keeps last
 // step's colour, as Box2D v3's constraint graph does). The colour decides the

@@ -76,6 +76,86 @@ inline uint64_t contact_reach_box(Q32 inv_inertia, Q32 max_extent) {
   return uint64_t{1} << (shift < 46 ? shift : 46);
 }
 
+/// The largest ratio of the two inverse masses a contact constraint sees
+/// (issue 14): a body more than this many times lighter than the other body
+/// of a contact responds in that contact as if it were 1/k_max_contact_mass_ratio
+/// of the heavier one's mass (see cap_mass_ratio).
+constexpr int64_t k_max_contact_mass_ratio = 100;
+
+/// The per-contact mass-ratio cap (issue 14; PhysX's per-contact inverse mass
+/// scales, Havok's mass-ratio clamping): when both bodies are dynamic and
+/// m_light⁻¹ > R·m_heavy⁻¹ (R = k_max_contact_mass_ratio), the light side's
+/// inverse mass becomes R·m_heavy⁻¹ and its inverse inertia is scaled by the
+/// same factor s = R·m_heavy⁻¹ / m_light⁻¹ ∈ (0, 1): in this contact the light
+/// body is a copy of itself R times lighter than the heavy one. Why: the soft
+/// contact is as stiff as the lighter body (its effective mass), so a light
+/// body under a heavy one cannot carry more than ~R times its own weight; the
+/// ground under it then takes the load at the light body's stiffness
+/// (1:1,000 sank 0.85 m, 1:10,000 tunnelled). With the cap every heavy-on-light
+/// stack moves, per unit of velocity, as a 1:R stack does. The cost: the
+/// contact gives the light body less velocity than its true mass would take
+/// (momentum is not conserved in that contact), visible only at ratios over R.
+/// Equal or near masses (every golden scene but the mass-ratio ones) keep
+/// every bit. Range: R·m⁻¹ ≤ 100 · 1000 kg⁻¹; s·I⁻¹ < I⁻¹.
+inline void cap_mass_ratio(Q32* inv_mass_light, Q32* inv_inertia_light, Q32 inv_mass_heavy) {
+  if (inv_mass_heavy <= Q32::zero()) return;  // static or kinematic: no ratio
+  const Q32 capped = Q32::from_raw(inv_mass_heavy.raw * k_max_contact_mass_ratio);
+  if (*inv_mass_light <= capped) return;
+  *inv_inertia_light = fast::mul(*inv_inertia_light, capped / *inv_mass_light);
+  *inv_mass_light = capped;
+}
+
+// Unsaturated arithmetic of the per-point preparation. Every value it forms
+// is far inside the Q32.32 range in every state the API and restore accept
+// (the argument below), so the checked operators would neither saturate nor
+// report a fault there, and the exact result wrapped through unsigned (add,
+// sub) or rounded by fast::round_shift_words alone (to nearest, ties away
+// from zero; no saturation test) is their result, bit for bit. Debug and
+// sanitizer builds (and targets without __int128) use the checked operators
+// instead, which would report a fault — and give other bits, caught by the
+// golden chains of those builds — should the argument ever fail.
+// The bounds (limits.h; "Range of the preparation" in contact_solver.cpp):
+//   com offset c − p: the centre of mass lies within its body's shapes,
+//     |c − p| ≤ max_extent ≤ 2·k_max_shape_size < 2^15 m;
+//   anchors r = anchor − (c − p): a manifold point lies within the
+//     speculative distance of both shapes (narrow phase, this step), so
+//     |r| < 2^16 m, and so are both terms;
+//   R⁻¹·r (rotation entries ≤ 1 + 2^-30), r × n, r × t (n unit): < 2^17 m;
+//   I⁻¹_c·(r × n) < 2^24 and I⁻¹_c·(r × n)² ≤ 64 000 (the inverse-inertia
+//     bound), m⁻¹ ≤ 1000 kg⁻¹: k < 2^17, every partial sum too;
+//   normal_mass · mass_scale ≤ normal_mass (mass_scale ∈ (0, 1)).
+// Each 128-bit sum of products is then below 2^82 in magnitude, far from
+// round_shift's saturation threshold 2^95 − 2^31, and every add/sub result
+// is below 2^49 raw. A static side's world anchor (c + r) keeps fast::add:
+// a body that is not simulated may lie anywhere in range.
+namespace unsat {
+#if TANDEM_FAST_MATH_UNCHECKED
+inline Q32 add(Q32 a, Q32 b) {
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) + static_cast<uint64_t>(b.raw)));
+}
+inline Q32 sub(Q32 a, Q32 b) {
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)));
+}
+inline Q32 round(fast::u128 p) {
+  return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(p), static_cast<uint64_t>(p >> 64)));
+}
+inline Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
+inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
+inline Q32 diff2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) - fast::product(c.raw, d.raw)); }
+#else
+inline Q32 add(Q32 a, Q32 b) { return fast::add(a, b); }
+inline Q32 sub(Q32 a, Q32 b) { return fast::sub(a, b); }
+inline Q32 mul(Q32 a, Q32 b) { return fast::mul(a, b); }
+inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return fast::sum2(a, b, c, d); }
+inline Q32 diff2(Q32 a, Q32 b, Q32 c, Q32 d) { return fast::diff2(a, b, c, d); }
+#endif
+inline Vec2 sub(Vec2 a, Vec2 b) { return {sub(a.x, b.x), sub(a.y, b.y)}; }
+/// fast::cross(a, b).
+inline Q32 cross(Vec2 a, Vec2 b) { return diff2(a.x, b.y, a.y, b.x); }
+/// fast::inv_rotate(q, v).
+inline Vec2 inv_rotate(Rot q, Vec2 v) { return {sum2(q.c, v.x, q.s, v.y), diff2(q.c, v.y, q.s, v.x)}; }
+}  // namespace unsat
+
 /// contact_reach_box not yet computed for a body (3: never a result).
 constexpr uint64_t k_reach_box_unset = 3;
 
@@ -126,7 +206,9 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     ++count;
   });
   Arena* arena = &world->arena;
-  context->constraints = arena_allocate_array<ContactConstraint>(arena, count, "contact_constraints");
+  // Unwritten: every field of each record is stored below (no zeroing
+  // pass over the 464-byte records first).
+  context->constraints = arena_allocate_array_for_overwrite<ContactConstraint>(arena, count, "contact_constraints");
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
   context->constraint_count = count;
   // Per solver body: the anchor box inside which contact_inv_inertia keeps
@@ -163,8 +245,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
     const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
     ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
-    // Every field is written below (no zeroing pass over the 464-byte
-    // record first): the header here, each used point in the loop, an
+    // Every field is written below (the array is unwritten storage,
+    // arena_allocate_array_for_overwrite): the header here, each used point in the loop, an
     // unused second point zeroed as a whole. A field added to either struct
     // must be written here too: the sizes are asserted so that a merge that
     // adds one stops at this line.
@@ -195,6 +277,20 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       dv_b = p.delta_linear_velocity;
     }
     cc.kick = fast::dot(fast::sub(dv_b, dv_a), cc.normal);
+    // The mass-ratio cap, for resting contacts only: both sides dynamic
+    // (then both are simulated), one over R times lighter, and the centres
+    // closing or parting slower than the restitution threshold along the
+    // normal. An impact keeps the true masses, so momentum is exchanged as
+    // it should be where it shows (see cap_mass_ratio).
+    if (cc.inv_mass_a > Q32::zero() && cc.inv_mass_b > Q32::zero() &&
+        (cc.inv_mass_a > Q32::from_raw(cc.inv_mass_b.raw * k_max_contact_mass_ratio) ||
+         cc.inv_mass_b > Q32::from_raw(cc.inv_mass_a.raw * k_max_contact_mass_ratio))) {
+      const Q32 vn = fast::dot(fast::sub(context->states[ib].linear_velocity, context->states[ia].linear_velocity), cc.normal);
+      if (abs(vn) < context->restitution_threshold) {
+        cap_mass_ratio(&cc.inv_mass_a, &cc.inv_inertia_a, cc.inv_mass_b);
+        cap_mass_ratio(&cc.inv_mass_b, &cc.inv_inertia_b, cc.inv_mass_a);
+      }
+    }
     const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
     cc.softness = rigid_side ? context->static_softness : context->contact_softness;
 
@@ -202,26 +298,21 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
     const Vec2 n_vec = cc.normal;
     const Vec2 t_vec = right_perp(n_vec);
-    const Vec2 com_offset_a = fast::sub(sim_a.center, sim_a.transform.p);
-    const Vec2 com_offset_b = fast::sub(sim_b.center, sim_b.transform.p);
-    const Q32 inv_mass_sum = fast::add(cc.inv_mass_a, cc.inv_mass_b);
-    // Geometry (anchors, crosses, the start-of-step gap) uses fast_math.h:
-    // anchors lie within a shape's reach of its body (< 2^21 m) and n, t and
-    // the rotations are unit, so nothing saturates and the bits are the
-    // checked operators'. The mass terms use fast_math.h too: its mul and add
-    // give the checked operators' bits in every state, saturation included
-    // (only the fault report is left out, as everywhere in fast_math.h's
-    // release path), and with the inverse inertia bounded by
-    // contact_inv_inertia they stay in range ("Range of the preparation" in
-    // contact_solver.cpp).
+    const Vec2 com_offset_a = unsat::sub(sim_a.center, sim_a.transform.p);
+    const Vec2 com_offset_b = unsat::sub(sim_b.center, sim_b.transform.p);
+    const Q32 inv_mass_sum = unsat::add(cc.inv_mass_a, cc.inv_mass_b);
+    // Geometry (anchors, crosses) and the mass terms use the unsaturated
+    // helpers above (their range argument: same bits as the checked
+    // operators); the inverse inertia is first bounded by
+    // contact_inv_inertia ("Range of the preparation" in contact_solver.cpp).
     Vec2 anchors_a[2], anchors_b[2];
     bool inside_a = true, inside_b = true;
     const uint64_t box_a = body_reach_box(ia);
     const uint64_t box_b = body_reach_box(ib);
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
-      anchors_a[j] = fast::sub(mp.anchor_a, com_offset_a);
-      anchors_b[j] = fast::sub(mp.anchor_b, com_offset_b);
+      anchors_a[j] = unsat::sub(mp.anchor_a, com_offset_a);
+      anchors_b[j] = unsat::sub(mp.anchor_b, com_offset_b);
       inside_a = inside_a && inside_reach_box(anchors_a[j], box_a);
       inside_b = inside_b && inside_reach_box(anchors_b[j], box_b);
     }
@@ -242,8 +333,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       ContactConstraintPoint& cp = cc.points[j];
       const Vec2 anchor_a = anchors_a[j];
       const Vec2 anchor_b = anchors_b[j];
-      cp.local_a = ia >= 0 ? fast::inv_rotate(rotation_a, anchor_a) : fast::add(sim_a.center, anchor_a);
-      cp.local_b = ib >= 0 ? fast::inv_rotate(rotation_b, anchor_b) : fast::add(sim_b.center, anchor_b);
+      cp.local_a = ia >= 0 ? unsat::inv_rotate(rotation_a, anchor_a) : fast::add(sim_a.center, anchor_a);
+      cp.local_b = ib >= 0 ? unsat::inv_rotate(rotation_b, anchor_b) : fast::add(sim_b.center, anchor_b);
       // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
       // plus this. At the start of the step the anchors close exactly
       // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
@@ -251,16 +342,18 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       // separation is taken as it is instead of paying four rotations to
       // cancel that rounding.
       cp.adjusted_separation = mp.separation;
-      const Q32 rn_a = fast::cross(anchor_a, n_vec), rn_b = fast::cross(anchor_b, n_vec);
-      const Q32 rt_a = fast::cross(anchor_a, t_vec), rt_b = fast::cross(anchor_b, t_vec);
-      cp.angular_n_a = fast::mul(cc.inv_inertia_a, rn_a);
-      cp.angular_n_b = fast::mul(cc.inv_inertia_b, rn_b);
-      cp.angular_t_a = fast::mul(cc.inv_inertia_a, rt_a);
-      cp.angular_t_b = fast::mul(cc.inv_inertia_b, rt_b);
-      const Q32 k_normal = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_n_a, rn_a)), fast::mul(cp.angular_n_b, rn_b));
+      const Q32 rn_a = unsat::cross(anchor_a, n_vec), rn_b = unsat::cross(anchor_b, n_vec);
+      const Q32 rt_a = unsat::cross(anchor_a, t_vec), rt_b = unsat::cross(anchor_b, t_vec);
+      cp.angular_n_a = unsat::mul(cc.inv_inertia_a, rn_a);
+      cp.angular_n_b = unsat::mul(cc.inv_inertia_b, rn_b);
+      cp.angular_t_a = unsat::mul(cc.inv_inertia_a, rt_a);
+      cp.angular_t_b = unsat::mul(cc.inv_inertia_b, rt_b);
+      const Q32 k_normal =
+          unsat::add(unsat::add(inv_mass_sum, unsat::mul(cp.angular_n_a, rn_a)), unsat::mul(cp.angular_n_b, rn_b));
       cp.normal_mass = k_normal > Q32::zero() ? fast::reciprocal(k_normal) : Q32::zero();
-      cp.soft_normal_mass = fast::mul(cp.normal_mass, cc.softness.mass_scale);
-      const Q32 k_tangent = fast::add(fast::add(inv_mass_sum, fast::mul(cp.angular_t_a, rt_a)), fast::mul(cp.angular_t_b, rt_b));
+      cp.soft_normal_mass = unsat::mul(cp.normal_mass, cc.softness.mass_scale);
+      const Q32 k_tangent =
+          unsat::add(unsat::add(inv_mass_sum, unsat::mul(cp.angular_t_a, rt_a)), unsat::mul(cp.angular_t_b, rt_b));
       cp.tangent_mass = k_tangent > Q32::zero() ? fast::reciprocal(k_tangent) : Q32::zero();
       cp.rn_a = rn_a;
       cp.rn_b = rn_b;

@@ -79,7 +79,7 @@ using FinishTaskFunction = void (*)(void* user_task, void* user_context);
 struct WorldDef {
   Vec2 gravity;                    ///< m/s²; default (0, −10); each component |g| ≤ k_max_gravity
   int32_t sub_step_count = 0;      ///< solver sub-steps per step; default 4; 1…k_max_sub_steps
-  Q32 contact_hertz;               ///< contact stiffness, Hz; default 30; (0, k_max_hertz]
+  Q32 contact_hertz;               ///< contact stiffness, Hz; default 30 (as Box2D v3); (0, k_max_hertz]
   Q32 contact_damping_ratio;       ///< contact damping, dimensionless; default 10; [0, k_max_damping_ratio]
   Q32 max_contact_push_speed;      ///< fastest overlap recovery, m/s; default 3; [0, max_linear_speed]
   Q32 joint_hertz;                 ///< joint stiffness, Hz; default 60; (0, k_max_hertz]

@@ -156,30 +156,19 @@ TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked, either way up", "[stre
       // 1:10 holds: the heavy box rests on the light one within 1 cm.
       CHECK(gap == Approx(1.0L).margin(0.01L));
       CHECK(lowest_lower > 0.49L);
-    } else if (ratio <= 100.5L) {
-      // 1:100 holds with the boxes overlapping by 0.04 m (0.96 ± 0.005 m apart).
-      CHECK(gap == Approx(0.96L).margin(0.005L));
-      CHECK(lowest_lower > 0.49L);
-    } else if (ratio <= 1000.5L) {
-      // 1:1,000: the soft contact gives way and the heavy box sinks 0.85 m
-      // into the light one (its centre 0.15 ± 0.01 m above the light one's
-      // at the lowest) and squeezes it out sideways; they end 0.65 ± 0.01 m
-      // apart vertically, one of them pushed up to 0.35 ± 0.01 m sideways.
-      // The order holds.
-      CHECK(lowest_gap == Approx(0.15L).margin(0.01L));
-      CHECK(gap == Approx(0.65L).margin(0.01L));
-      CHECK(widest_x == Approx(0.35L).margin(0.01L));
     } else {
-      // 1:10,000 and 1:100,000 (also 100 kg on 0.001 kg): the heavy box
-      // passes through the light one (its centre up to 0.19 m below the
-      // light one's: the order swaps) and both end side by side on the
-      // ground, centres at 0.500 ± 0.001 m, one of them pushed 1.00 ± 0.01 m
-      // sideways.
-      CHECK(lowest_gap < -0.19L);
-      CHECK(gap == Approx(0.0L).margin(0.001L));
-      CHECK(final_lower == Approx(0.5L).margin(0.001L));
-      CHECK(final_upper == Approx(0.5L).margin(0.001L));
-      CHECK(widest_x == Approx(1.0L).margin(0.01L));
+      // 1:100 to 1:100,000 (also 100 kg on 0.001 kg) hold alike: the
+      // contact's mass-ratio cap (contact_prepare.cpp, issue 14) makes a body
+      // more than 100 times lighter respond in a resting contact as one 100
+      // times lighter, so every heavy-on-light stack moves as the 1:100 one:
+      // the boxes overlap by 0.036 m (0.964 ± 0.002 m apart, lowest and
+      // final), the lower one pressed under 0.01 m into the ground, no
+      // sideways motion (< 0.01 m). (Before the cap 1:1,000 sank 0.85 m and
+      // 1:10,000 and 1:100,000 tunnelled.)
+      CHECK(lowest_gap == Approx(0.964L).margin(0.002L));
+      CHECK(gap == Approx(0.964L).margin(0.002L));
+      CHECK(lowest_lower > 0.49L);
+      CHECK(widest_x < 0.01L);
     }
     // Nothing goes through the ground: the lower box's centre stays above
     // 0.39 m (pressed at most 0.11 m into the ground), the upper one's above
@@ -190,16 +179,19 @@ TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked, either way up", "[stre
   CHECK(faults.count() == 0);
 }
 
-TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box passes the light one, nothing goes through the ground, no fault",
+TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box ends on the light one or beside it, nothing goes through the ground, no fault",
           "[stress][limits]") {
   FaultCount faults;
   // A 1 m heavy box thrown down at 10 or 100 m/s onto a 1 m light box resting
   // on a 2 m thick static ground (top face at y = 0), 100,000 kg on 1 kg and
-  // 100 kg on 0.001 kg. The soft contact cannot hold the light box up (see
-  // the stacked ratios above): the heavy box passes through it, pressing it
-  // up to 0.38 m into the ground (measured: lowest light centre 0.136 m at
-  // 10 m/s, 0.120 m at 100 m/s), and the two end side by side on the ground.
-  // Neither goes through the ground.
+  // 100 kg on 0.001 kg. An impact keeps the true masses (the mass-ratio cap
+  // is for resting contacts only, contact_prepare.cpp): the heavy box
+  // passes into the light one, pressing it up to 0.38 m into the ground
+  // (measured: lowest light centre 0.123 m at 10 m/s, 0.120 m at 100 m/s).
+  // Once the two move together the cap pushes them apart: at 10 m/s the
+  // heavy box ends resting on the light one (centres 0.492 and 1.459 m, as
+  // the stacked 1:100 case), at 100 m/s it has gone past and both end side
+  // by side on the ground (0.5 m). Neither goes through the ground.
   struct Case { Q32 light; Q32 heavy; Q32 speed; };
   const Case cases[] = {{1_q32, 100000_q32, 10_q32}, {1_q32, 100000_q32, 100_q32},
                         {0.001_q32, 100_q32, 10_q32}, {0.001_q32, 100_q32, 100_q32}};
@@ -223,9 +215,11 @@ TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box passes the
                                       << " kg");
     CHECK(lowest_light > 0.1L);
     CHECK(lowest_heavy > 0.35L);
-    // Both at rest on the ground after 5 s, within the linear slop.
-    CHECK(ld(body_world_center(light).y) == Approx(0.5L).margin(0.005L));
-    CHECK(ld(body_world_center(heavy).y) == Approx(0.5L).margin(0.005L));
+    // At rest after 5 s, within the linear slop: stacked (10 m/s) or side by
+    // side on the ground (100 m/s).
+    const bool stacked = c.speed < 50_q32;
+    CHECK(ld(body_world_center(light).y) == Approx(stacked ? 0.492L : 0.5L).margin(0.005L));
+    CHECK(ld(body_world_center(heavy).y) == Approx(stacked ? 1.459L : 0.5L).margin(0.005L));
   }
   CHECK(faults.count() == 0);
 }
