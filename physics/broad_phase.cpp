@@ -47,6 +47,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "physics/contact.h"
 #include "physics/shape.h"
@@ -113,11 +114,12 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
 /// Shapes per block of the parallel per-shape part of broad_phase_gather_proxies.
 constexpr int32_t k_proxy_block = 256;
 
-/// Lists the proxies and the sensors and fills the by-shape arrays. The
-/// per-shape part (kind, sanitised fat box, filter copy: each shape writes
-/// only its own slots) runs in fixed blocks of k_proxy_block shapes on any
-/// thread (task.h); the lists are then built serially in ascending shape
-/// index from the kinds, so they are the same for every worker count.
+/// Fills the by-shape arrays, flags the changed shapes and counts the
+/// proxies. The per-shape part (kind, sanitised fat box, filter copy, changed
+/// flag: each shape writes only its own slots; counts per block) runs in
+/// fixed blocks of k_proxy_block shapes on any thread (task.h); the block
+/// counts are summed in block order and the changed list is read from the
+/// flags in ascending shape index, so all is the same for every worker count.
 void broad_phase_gather_proxies(World* world, bool in_step) {
   BroadPhase& bp = world->broad_phase;
   const int32_t capacity = id_pool_capacity(world->shape_pool);
@@ -136,58 +138,87 @@ void broad_phase_gather_proxies(World* world, bool in_step) {
     if (bp.shape_kind[s] != k_proxy_none) bp.pairs_valid = false;
     bp.shape_kind[s] = k_proxy_none;
   }
-  const World* w = world;
   uint8_t* kinds = bp.shape_kind.data();
   AABB* fats = bp.shape_fat.data();
   ProxyFilter* filters = bp.shape_filter.data();
   uint8_t* changed = bp.shape_changed.data();
   AABB* boxes = bp.shape_box.data();
+  // Proxies per block.
+  const int32_t blocks = in_step ? block_count_of(capacity, k_proxy_block) : (capacity > 0 ? 1 : 0);
+  int32_t local_count = 0;
+  int32_t* counts =
+      in_step ? arena_allocate_array<int32_t>(&world->arena, blocks, "proxy_block_counts") : &local_count;
+  // Base pointers read once: the loop's byte stores could alias them.
+  const uint8_t* alive = world->shape_pool.alive.data();
+  const Shape* shapes = world->shapes.data();
+  const Body* bodies = world->bodies.data();
   const auto per_shape = [=](int32_t begin, int32_t end) {
+    int32_t proxies = 0;
     for (int32_t s = begin; s < end; ++s) {
       const size_t si = static_cast<size_t>(s);
       const uint8_t old_kind = kinds[si];
-      kinds[si] = k_proxy_none;
-      const bool left = old_kind != k_proxy_none;  // a proxy that stops taking part changed
-      if (!id_pool_is_alive(w->shape_pool, s)) {
-        if (left) changed[si] = 1;
-        continue;
+      uint8_t kind = k_proxy_none;
+      bool differs = old_kind != k_proxy_none;  // a proxy that stops taking part changed
+      if (alive[si] != 0) {
+        const Shape& shape = shapes[si];
+        const Body& body = bodies[static_cast<size_t>(shape.body_index)];
+        if (!shape.is_sensor && body.enabled) {
+          kind = body.type == BodyType::dynamic_body ? k_proxy_dynamic : k_proxy_static;
+          const ProxyFilter filter{shape.body_index, shape.filter.group_index, shape.filter.category_bits,
+                                   shape.filter.mask_bits};
+          ++proxies;
+          // The fat box is a function of the stored AABB: recomputed only
+          // when that changed.
+          differs = kind != old_kind || !same_box(shape.aabb, boxes[si]) || !same_filter(filter, filters[si]);
+          if (differs) {
+            boxes[si] = shape.aabb;
+            fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
+            filters[si] = filter;
+          }
+        }
       }
-      const Shape& shape = w->shapes[si];
-      const Body& body = w->bodies[static_cast<size_t>(shape.body_index)];
-      if (shape.is_sensor || !body.enabled) {
-        if (left) changed[si] = 1;
-        continue;
-      }
-      const uint8_t kind = body.type == BodyType::dynamic_body ? k_proxy_dynamic : k_proxy_static;
-      const ProxyFilter filter{shape.body_index, shape.filter.group_index, shape.filter.category_bits,
-                               shape.filter.mask_bits};
       kinds[si] = kind;
-      // The fat box is a function of the stored AABB: recomputed only when
-      // that changed. Flags are sticky until an update consumes them (a
-      // query's sync gathers too).
-      if (kind == old_kind && same_box(shape.aabb, boxes[si]) && same_filter(filter, filters[si])) continue;
-      changed[si] = 1;
-      boxes[si] = shape.aabb;
-      fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
-      filters[si] = filter;
+      // Sticky until an update consumes it (a query's sync gathers too).
+      if (differs) changed[si] = 1;
     }
+    counts[begin / k_proxy_block] = proxies;
   };
   if (in_step) {
     parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, per_shape);
-  } else {
-    per_shape(0, capacity);
+  } else if (capacity > 0) {
+    per_shape(0, capacity);  // one block: counts[0]
   }
-  const size_t changed_room = cap / 4 + 64;  // bp.changed lists at most this many (the carry-over limit is lower)
   int32_t proxy_count = 0;
-  for (int32_t s = 0; s < capacity; ++s) {
-    const size_t si = static_cast<size_t>(s);
-    proxy_count += kinds[si] != k_proxy_none ? 1 : 0;
-    if (changed[si] != 0) {
-      ++bp.changed_count;
-      if (bp.changed.size() < changed_room) bp.changed.push_back(s);
+  for (int32_t k = 0; k < blocks; ++k) proxy_count += counts[k];
+  if (in_step) arena_free(&world->arena, counts);
+  bp.proxy_count = proxy_count;
+  // Count the flags eight at a time (each byte 0 or 1: the byte sum of a
+  // word is its top byte times 0x0101…01) and list them, ascending, while
+  // the list stays short enough to carry over (the limit in can_carry_over
+  // is lower).
+  const size_t room = cap / 4 + 64;
+  size_t changed_count = 0;
+  const auto note = [&](size_t s) {
+    ++changed_count;
+    if (bp.changed.size() < room) bp.changed.push_back(static_cast<int32_t>(s));
+  };
+  size_t s = 0;
+  for (; s + 8 <= cap; s += 8) {
+    uint64_t word;
+    std::memcpy(&word, changed + s, 8);
+    if (word == 0) continue;
+    if (bp.changed.size() >= room) {
+      changed_count += static_cast<size_t>((word * 0x0101010101010101ull) >> 56);
+      continue;
+    }
+    for (size_t j = 0; j < 8; ++j) {
+      if (changed[s + j] != 0) note(s + j);
     }
   }
-  bp.proxy_count = proxy_count;
+  for (; s < cap; ++s) {
+    if (changed[s] != 0) note(s);
+  }
+  bp.changed_count = static_cast<int32_t>(changed_count);
   if (!in_step) broad_phase_list_proxies(world);
 }
 

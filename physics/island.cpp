@@ -144,42 +144,16 @@ void wake_all_bodies(World* world) {
 void stage_wake_touched(World* world, StepContext* context) {
   // The rule, contact by contact in contact order: a touching contact wakes
   // the island of a sleeping body whose other body wakes others. Bodies only
-  // go from asleep to awake here, so (1) with no sleeper at the start there
-  // is nothing to do, and (2) until the first wake of this pass every body's
-  // state is still its state at the start, which a per-body byte array
-  // holds. So the pass is in two parts: the first contact that wakes
-  // something is found from the start states alone (a pure test: blocks of
+  // go from asleep to awake here, so until the first wake of this pass every
+  // body's state is still its state at the start. So the pass is in two
+  // parts: the first contact that wakes something is found from the Body
+  // records as they are at the start (a pure test: blocks of
   // k_wake_scan_block contacts on any thread, each reporting its first
   // candidate, combined in block order into the lowest); from there on the
-  // contacts are walked serially reading the Body records (a woken body now
-  // wakes others). Same wakes in the same order as testing the records for
-  // every contact; a step that wakes nobody (a sleeping pile while the
-  // awake bodies stay away) pays only the parallel scan.
-  const int32_t end = id_pool_capacity(world->body_pool);
-  constexpr uint8_t k_sleeping = 1, k_wakes_others = 2;
-  Arena* arena = &world->arena;
-  uint8_t* start = arena_allocate_array<uint8_t>(arena, end, "wake_start_states");
-  const int32_t body_blocks = block_count_of(end, k_sleep_block);
-  int32_t* sleepers_per_block = arena_allocate_array<int32_t>(arena, body_blocks, "wake_sleepers_per_block");
-  {
-    const World* w = world;
-    parallel_for(context->tasks, "wake_start_states", end, k_sleep_block, [=](int32_t begin, int32_t stop) {
-      int32_t sleepers = 0;
-      for (int32_t b = begin; b < stop; ++b) {
-        const Body& body = w->bodies[static_cast<size_t>(b)];
-        uint8_t state = 0;
-        if (id_pool_is_alive(w->body_pool, b)) {
-          if (is_sleeping(body)) state = k_sleeping;
-          if (wakes_others(body)) state = k_wakes_others;
-        }
-        sleepers += state == k_sleeping ? 1 : 0;
-        start[b] = state;
-      }
-      sleepers_per_block[begin / k_sleep_block] = sleepers;
-    });
-  }
-  int32_t sleepers = 0;
-  for (int32_t k = 0; k < body_blocks; ++k) sleepers += sleepers_per_block[k];
+  // contacts are walked serially (a woken body now wakes others). Same wakes
+  // in the same order as testing every contact in order; a step that wakes
+  // nobody (a sleeping pile while the awake bodies stay away, or no sleeper
+  // at all) pays only the scan, and never a pass over every body.
   const int32_t contact_count = static_cast<int32_t>(world->contacts.size());
   int32_t first = contact_count;  // the first contact whose start states wake a sleeper
   // Only a contact with a body that wakes others — a simulated one — can
@@ -187,21 +161,24 @@ void stage_wake_touched(World* world, StepContext* context) {
   // any wake) those are exactly the awake index's contacts: the scan reads
   // only them (World::awake_contacts, in contact order), not the contacts of
   // sleeping islands.
+  Arena* arena = &world->arena;
   const int32_t scan_count = static_cast<int32_t>(world->awake_contacts.size());
-  if (sleepers > 0 && scan_count > 0) {
+  if (scan_count > 0) {
     world->contacts_read_after_update += scan_count;
     const int32_t scan_blocks = block_count_of(scan_count, k_wake_scan_block);
     int32_t* first_per_block = arena_allocate_array<int32_t>(arena, scan_blocks, "wake_first_per_block");
     const Contact* contacts = world->contacts.data();
     const int32_t* scan = world->awake_contacts.data();
+    const Body* bodies = world->bodies.data();
     parallel_for(context->tasks, "wake_touched_scan", scan_count, k_wake_scan_block,
                  [=](int32_t begin, int32_t stop) {
                    int32_t found = stop;
                    for (int32_t k = begin; k < stop; ++k) {
                      const Contact& c = contacts[scan[k]];
                      if ((c.flags & k_contact_touching) == 0) continue;
-                     const uint8_t sa = start[c.body_a], sb = start[c.body_b];
-                     if ((sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others)) {
+                     const Body& a = bodies[c.body_a];
+                     const Body& b = bodies[c.body_b];
+                     if ((is_sleeping(a) && wakes_others(b)) || (is_sleeping(b) && wakes_others(a))) {
                        found = k;
                        break;
                      }
@@ -226,8 +203,6 @@ void stage_wake_touched(World* world, StepContext* context) {
     if (is_sleeping(a) && wakes_others(b)) wake_body_island(world, c.body_a);
     if (is_sleeping(b) && wakes_others(a)) wake_body_island(world, c.body_b);
   }
-  arena_free(arena, sleepers_per_block);
-  arena_free(arena, start);
 }
 
 void stage_update_sleep(World* world, StepContext* context) {
