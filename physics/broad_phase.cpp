@@ -20,11 +20,34 @@
 // index's partners (a handful each). Keys are unique, so the result is the
 // one sorted list whatever order the structure visited pairs in.
 //
+// Carry-over: whether two proxies form a pair is a function of their kinds,
+// fat boxes and filter copies (and of the joints' no-collide set and the
+// custom filter). The pre-pass flags every shape whose kind, stored AABB or
+// filter differs from what the last update used (shape_changed; sticky until
+// an update consumes it, since a query's sync gathers too). When the last
+// update's pairs are valid, no custom filter is set (a user callback is only
+// promised to be deterministic, not unchanged between steps), the no-collide
+// set is the same and at most a quarter of the proxies changed, the update
+// keeps the last pairs whose shapes both did not change and searches only the
+// changed proxies against every proxy, through the current kind's structure
+// (the tree re-synced for the changed shapes alone, sweep-and-prune's query,
+// the grid with a list of stale entries, naive's scan). A pair found from
+// both sides is emitted from its lower changed shape only. The new pairs are
+// sorted and merged with the kept ones, which gives exactly the full
+// search's list: a kept pair's inputs are those that made it a pair, a pair
+// dropped last time between unchanged proxies is still dropped, and every
+// pair with a changed proxy is searched. So a sleeping pile costs the
+// per-shape compare and the merge, not a search; results never depend on
+// which path ran. Nothing here is state: a restore, a kind change or a new
+// custom filter clears pairs_valid and the next update is a full search.
+//
 // Timing: update_nanoseconds comes from std::chrono::steady_clock and is only
 // stored for world_broad_phase_stats; nothing reads it back.
 #include "physics/broad_phase.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "physics/contact.h"
 #include "physics/shape.h"
@@ -56,6 +79,16 @@ bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b)
 
 namespace {
 
+bool same_box(const AABB& a, const AABB& b) {
+  return a.lower.x.raw == b.lower.x.raw && a.lower.y.raw == b.lower.y.raw && a.upper.x.raw == b.upper.x.raw &&
+         a.upper.y.raw == b.upper.y.raw;
+}
+
+bool same_filter(const ProxyFilter& a, const ProxyFilter& b) {
+  return a.body == b.body && a.group_index == b.group_index && a.category_bits == b.category_bits &&
+         a.mask_bits == b.mask_bits;
+}
+
 /// The filters after the box test: shapes_should_collide, then the custom
 /// filter with (lower, higher). Both shapes are proxies (not sensors, bodies
 /// enabled) and one is dynamic, so shapes_should_collide reduces to
@@ -81,48 +114,122 @@ bool pair_passes_filters(World* world, int32_t lower, int32_t higher) {
 /// Shapes per block of the parallel per-shape part of broad_phase_gather_proxies.
 constexpr int32_t k_proxy_block = 256;
 
-/// Lists the proxies and the sensors and fills the by-shape arrays. The
-/// per-shape part (kind, sanitised fat box, filter copy: each shape writes
-/// only its own slots) runs in fixed blocks of k_proxy_block shapes on any
-/// thread (task.h); the lists are then built serially in ascending shape
-/// index from the kinds, so they are the same for every worker count.
+/// Fills the by-shape arrays, flags the changed shapes and counts the
+/// proxies. The per-shape part (kind, sanitised fat box, filter copy, changed
+/// flag: each shape writes only its own slots; counts per block) runs in
+/// fixed blocks of k_proxy_block shapes on any thread (task.h); the block
+/// counts are summed in block order and the changed list is read from the
+/// flags in ascending shape index, so all is the same for every worker count.
 void broad_phase_gather_proxies(World* world, bool in_step) {
   BroadPhase& bp = world->broad_phase;
   const int32_t capacity = id_pool_capacity(world->shape_pool);
   const size_t cap = static_cast<size_t>(capacity);
+  bp.changed.clear();
+  bp.changed_count = 0;
+  bp.proxy_count = 0;
+  if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
+  if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
+  if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
+  if (bp.shape_changed.size() < cap) bp.shape_changed.resize(cap, 0);
+  if (bp.shape_box.size() < cap) bp.shape_box.resize(cap);
+  // Slots beyond the pool (a restore may leave fewer) take no part; pairs
+  // that named them cannot be carried over.
+  for (size_t s = cap; s < bp.shape_kind.size(); ++s) {
+    if (bp.shape_kind[s] != k_proxy_none) bp.pairs_valid = false;
+    bp.shape_kind[s] = k_proxy_none;
+  }
+  uint8_t* kinds = bp.shape_kind.data();
+  AABB* fats = bp.shape_fat.data();
+  ProxyFilter* filters = bp.shape_filter.data();
+  uint8_t* changed = bp.shape_changed.data();
+  AABB* boxes = bp.shape_box.data();
+  // Proxies per block.
+  const int32_t blocks = in_step ? block_count_of(capacity, k_proxy_block) : (capacity > 0 ? 1 : 0);
+  int32_t local_count = 0;
+  int32_t* counts =
+      in_step ? arena_allocate_array<int32_t>(&world->arena, blocks, "proxy_block_counts") : &local_count;
+  // Base pointers read once: the loop's byte stores could alias them.
+  const uint8_t* alive = world->shape_pool.alive.data();
+  const Shape* shapes = world->shapes.data();
+  const Body* bodies = world->bodies.data();
+  const auto per_shape = [=](int32_t begin, int32_t end) {
+    int32_t proxies = 0;
+    for (int32_t s = begin; s < end; ++s) {
+      const size_t si = static_cast<size_t>(s);
+      const uint8_t old_kind = kinds[si];
+      uint8_t kind = k_proxy_none;
+      bool differs = old_kind != k_proxy_none;  // a proxy that stops taking part changed
+      if (alive[si] != 0) {
+        const Shape& shape = shapes[si];
+        const Body& body = bodies[static_cast<size_t>(shape.body_index)];
+        if (!shape.is_sensor && body.enabled) {
+          kind = body.type == BodyType::dynamic_body ? k_proxy_dynamic : k_proxy_static;
+          const ProxyFilter filter{shape.body_index, shape.filter.group_index, shape.filter.category_bits,
+                                   shape.filter.mask_bits};
+          ++proxies;
+          // The fat box is a function of the stored AABB: recomputed only
+          // when that changed.
+          differs = kind != old_kind || !same_box(shape.aabb, boxes[si]) || !same_filter(filter, filters[si]);
+          if (differs) {
+            boxes[si] = shape.aabb;
+            fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
+            filters[si] = filter;
+          }
+        }
+      }
+      kinds[si] = kind;
+      // Sticky until an update consumes it (a query's sync gathers too).
+      if (differs) changed[si] = 1;
+    }
+    counts[begin / k_proxy_block] = proxies;
+  };
+  if (in_step) {
+    parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, per_shape);
+  } else if (capacity > 0) {
+    per_shape(0, capacity);  // one block: counts[0]
+  }
+  int32_t proxy_count = 0;
+  for (int32_t k = 0; k < blocks; ++k) proxy_count += counts[k];
+  if (in_step) arena_free(&world->arena, counts);
+  bp.proxy_count = proxy_count;
+  // Count the flags eight at a time (each byte 0 or 1: the byte sum of a
+  // word is its top byte times 0x0101…01) and list them, ascending, while
+  // the list stays short enough to carry over (the limit in can_carry_over
+  // is lower).
+  const size_t room = cap / 4 + 64;
+  size_t changed_count = 0;
+  const auto note = [&](size_t s) {
+    ++changed_count;
+    if (bp.changed.size() < room) bp.changed.push_back(static_cast<int32_t>(s));
+  };
+  size_t s = 0;
+  for (; s + 8 <= cap; s += 8) {
+    uint64_t word;
+    std::memcpy(&word, changed + s, 8);
+    if (word == 0) continue;
+    if (bp.changed.size() >= room) {
+      changed_count += static_cast<size_t>((word * 0x0101010101010101ull) >> 56);
+      continue;
+    }
+    for (size_t j = 0; j < 8; ++j) {
+      if (changed[s + j] != 0) note(s + j);
+    }
+  }
+  for (; s < cap; ++s) {
+    if (changed[s] != 0) note(s);
+  }
+  bp.changed_count = static_cast<int32_t>(changed_count);
+  if (!in_step) broad_phase_list_proxies(world);
+}
+
+void broad_phase_list_proxies(World* world) {
+  BroadPhase& bp = world->broad_phase;
+  const int32_t capacity = id_pool_capacity(world->shape_pool);
+  const uint8_t* kinds = bp.shape_kind.data();
   bp.proxies.clear();
   bp.fat_bounds.clear();
   bp.proxy_dynamic.clear();
   bp.sensors.clear();
-  if (bp.shape_fat.size() < cap) bp.shape_fat.resize(cap);
-  if (bp.shape_kind.size() < cap) bp.shape_kind.resize(cap);
-  if (bp.shape_filter.size() < cap) bp.shape_filter.resize(cap);
-  // Slots beyond the pool (a restore may leave fewer) take no part.
-  for (size_t s = cap; s < bp.shape_kind.size(); ++s) bp.shape_kind[s] = k_proxy_none;
-  const World* w = world;
-  uint8_t* kinds = bp.shape_kind.data();
-  AABB* fats = bp.shape_fat.data();
-  ProxyFilter* filters = bp.shape_filter.data();
-  const auto per_shape = [=](int32_t begin, int32_t end) {
-    for (int32_t s = begin; s < end; ++s) {
-      const size_t si = static_cast<size_t>(s);
-      kinds[si] = k_proxy_none;
-      if (!id_pool_is_alive(w->shape_pool, s)) continue;
-      const Shape& shape = w->shapes[si];
-      const Body& body = w->bodies[static_cast<size_t>(shape.body_index)];
-      if (shape.is_sensor || !body.enabled) continue;
-      const bool dynamic = body.type == BodyType::dynamic_body;
-      kinds[si] = dynamic ? k_proxy_dynamic : k_proxy_static;
-      fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
-      filters[si] =
-          ProxyFilter{shape.body_index, shape.filter.group_index, shape.filter.category_bits, shape.filter.mask_bits};
-    }
-  };
-  if (in_step) {
-    parallel_for(&world->tasks, "broad_phase_proxies", capacity, k_proxy_block, per_shape);
-  } else {
-    per_shape(0, capacity);
-  }
   for (int32_t s = 0; s < capacity; ++s) {
     const size_t si = static_cast<size_t>(s);
     const uint8_t kind = kinds[si];
@@ -135,7 +242,7 @@ void broad_phase_gather_proxies(World* world, bool in_step) {
       continue;
     }
     bp.proxies.push_back(s);
-    bp.fat_bounds.push_back(fats[si]);
+    bp.fat_bounds.push_back(bp.shape_fat[si]);
     bp.proxy_dynamic.push_back(kind == k_proxy_dynamic ? 1 : 0);
   }
 }
@@ -247,14 +354,166 @@ void broad_phase_emit_overlapping(World* world, int32_t a, int32_t b) {
   bp.unsorted.push_back(shape_pair_key(lower, higher));
 }
 
+void broad_phase_offer_changed(World* world, int32_t p, int32_t q) {
+  BroadPhase& bp = world->broad_phase;
+  const size_t pi = static_cast<size_t>(p);
+  const size_t qi = static_cast<size_t>(q);
+  if (q == p) return;
+  const uint8_t kq = bp.shape_kind[qi];
+  if (kq == k_proxy_none) return;
+  if (bp.shape_kind[pi] != k_proxy_dynamic && kq != k_proxy_dynamic) return;
+  if (bp.shape_changed[qi] != 0 && q < p) return;  // found from q's side
+  ++bp.candidate_count;
+  if (!aabb_overlaps(bp.shape_fat[pi], bp.shape_fat[qi])) return;
+  broad_phase_emit_overlapping(world, p, q);
+}
+
+namespace {
+
+void full_update(World* world);
+
+/// Visitor of the carry-over searches that go through a structure's query.
+struct ChangedSearch {
+  World* world = nullptr;
+  int32_t shape = 0;  ///< the changed proxy being searched
+};
+
+Q32 offer_changed_visit(void* context, int32_t q) {
+  const ChangedSearch* search = static_cast<const ChangedSearch*>(context);
+  broad_phase_offer_changed(search->world, search->shape, q);
+  return Q32::one();
+}
+
+/// Whether this update may carry pairs over (see "Carry-over" in the file
+/// comment): the last update's pairs are valid, no custom filter (a user
+/// callback is only promised to be deterministic, not unchanged between
+/// steps), the joints' no-collide set is the same, and few proxies changed.
+bool can_carry_over(const World& world) {
+  const BroadPhase& bp = world.broad_phase;
+  if (!bp.pairs_valid || bp.custom_filter != nullptr) return false;
+  if (static_cast<size_t>(bp.changed_count) != bp.changed.size()) return false;  // more than bp.changed holds
+  if (4 * static_cast<int64_t>(bp.changed_count) > int64_t{bp.proxy_count} + 128) return false;
+  return bp.joint_keys == world.joints.no_collide_keys;
+}
+
+/// The carry-over update: the changed proxies are searched against every
+/// proxy through the current kind's structure, their pairs sorted, and merged
+/// with the last update's pairs between two unchanged proxies.
+void carry_over_update(World* world) {
+  BroadPhase& bp = world->broad_phase;
+  ChangedSearch search{world, 0};
+  BroadPhaseQuery q;
+  q.visit = offer_changed_visit;
+  q.context = &search;
+  int32_t searched = 0;
+  const auto each_changed = [&](auto&& f) {
+    for (const int32_t p : bp.changed) {
+      if (bp.shape_kind[static_cast<size_t>(p)] == k_proxy_none) continue;
+      ++searched;
+      search.shape = p;
+      q.box = bp.shape_fat[static_cast<size_t>(p)];
+      f(p);
+    }
+  };
+  switch (world->def.broad_phase) {
+    case BroadPhaseKind::sweep_and_prune:
+      if (!bp.changed.empty()) {
+        broad_phase_list_proxies(world);
+        sap_sync(world);
+        sap_prepare_query(&bp);
+      }
+      each_changed([&](int32_t) { sap_query(world, &q); });
+      break;
+    case BroadPhaseKind::grid:
+      grid_search_changed(world);
+      each_changed([&](int32_t) {});
+      break;
+    case BroadPhaseKind::tree:
+      tree_sync_changed(world);
+      each_changed([&](int32_t) { tree_query(world, &q); });
+      break;
+    case BroadPhaseKind::naive:
+    default:
+      if (!bp.changed.empty()) broad_phase_list_proxies(world);
+      each_changed([&](int32_t p) {
+        for (const int32_t other : bp.proxies) broad_phase_offer_changed(world, p, other);
+      });
+      break;
+  }
+  bp.stats.proxies_searched = searched;
+  // The new pairs in key order (keys are unique, so the order is too).
+  std::sort(bp.unsorted.begin(), bp.unsorted.end());
+  const size_t fresh_count = bp.unsorted.size();
+  if (bp.changed.empty()) {  // nothing changed: the same pairs
+    std::swap(bp.pairs, bp.previous);
+    bp.stats.pairs_carried = static_cast<int32_t>(bp.pairs.size());
+    return;
+  }
+  // Merge: previous pairs without a changed shape (in key order) and the new
+  // ones (in key order; disjoint, since each new pair has a changed shape).
+  const uint8_t* changed = bp.shape_changed.data();
+  const uint64_t* fresh = bp.unsorted.data();
+  bp.pairs.resize(bp.previous.size() + fresh_count);
+  ShapePair* out = bp.pairs.data();
+  size_t k = 0;
+  const auto take_fresh = [&](uint64_t key) {
+    *out++ = ShapePair{static_cast<int32_t>(key >> 32), static_cast<int32_t>(key & 0xFFFFFFFFu)};
+  };
+  for (const ShapePair& pr : bp.previous) {
+    if ((changed[static_cast<size_t>(pr.shape_a)] | changed[static_cast<size_t>(pr.shape_b)]) != 0) continue;
+    if (k < fresh_count) {
+      const uint64_t key = shape_pair_key(pr.shape_a, pr.shape_b);
+      while (k < fresh_count && fresh[k] < key) take_fresh(fresh[k++]);
+    }
+    *out++ = pr;
+  }
+  const size_t carried = static_cast<size_t>(out - bp.pairs.data()) - k;
+  while (k < fresh_count) take_fresh(fresh[k++]);
+  bp.pairs.resize(static_cast<size_t>(out - bp.pairs.data()));
+  bp.stats.pairs_carried = static_cast<int32_t>(carried);
+}
+
+}  // namespace
+
 void broad_phase_update_pairs(World* world) {
   const auto start = std::chrono::steady_clock::now();
   BroadPhase& bp = world->broad_phase;
+  std::swap(bp.pairs, bp.previous);
   bp.pairs.clear();
   bp.unsorted.clear();
   bp.stats = BroadPhaseStats{};
   bp.candidate_count = 0;
   broad_phase_gather_proxies(world, true);
+  if (can_carry_over(*world)) {
+    carry_over_update(world);
+  } else {
+    broad_phase_list_proxies(world);
+    full_update(world);
+    bp.stats.proxies_searched = bp.proxy_count;
+  }
+  // The changes are consumed: clear the sticky flags.
+  if (static_cast<size_t>(bp.changed_count) == bp.changed.size()) {
+    for (const int32_t s : bp.changed) bp.shape_changed[static_cast<size_t>(s)] = 0;
+  } else {
+    std::fill(bp.shape_changed.begin(), bp.shape_changed.end(), uint8_t{0});
+  }
+  if (bp.joint_keys != world->joints.no_collide_keys) bp.joint_keys = world->joints.no_collide_keys;
+  bp.pairs_valid = true;
+  bp.stats.proxies = bp.proxy_count;
+  bp.stats.pairs = static_cast<int32_t>(bp.pairs.size());
+  bp.stats.candidate_pairs =
+      bp.candidate_count > INT32_MAX ? INT32_MAX : static_cast<int32_t>(bp.candidate_count);
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
+  bp.stats.update_nanoseconds = ns > 0 ? static_cast<uint64_t>(ns) : 0;
+  // The rest of the step moves bodies: queries after it re-synchronise.
+  bp.query_synced = false;
+}
+
+namespace {
+
+/// Every proxy searched by the current kind (the reference path).
+void full_update(World* world) {
   switch (world->def.broad_phase) {
     case BroadPhaseKind::sweep_and_prune:
       sap_update(world);
@@ -273,16 +532,9 @@ void broad_phase_update_pairs(World* world) {
       naive_update(world);
       break;
   }
-  bp.stats.proxies = static_cast<int32_t>(bp.proxies.size());
-  bp.stats.pairs = static_cast<int32_t>(bp.pairs.size());
-  bp.stats.candidate_pairs =
-      bp.candidate_count > INT32_MAX ? INT32_MAX : static_cast<int32_t>(bp.candidate_count);
-  const auto elapsed = std::chrono::steady_clock::now() - start;
-  const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
-  bp.stats.update_nanoseconds = ns > 0 ? static_cast<uint64_t>(ns) : 0;
-  // The rest of the step moves bodies: queries after it re-synchronise.
-  bp.query_synced = false;
 }
+
+}  // namespace
 
 void broad_phase_reset(World* world) {
   BroadPhase& bp = world->broad_phase;
@@ -293,6 +545,7 @@ void broad_phase_reset(World* world) {
   bp.unsorted.clear();
   bp.sensors.clear();
   bp.query_synced = false;
+  bp.pairs_valid = false;
   sap_reset(&bp.sap);
   tree_reset(&bp.tree);
 }
@@ -309,6 +562,13 @@ void broad_phase_reserve_headroom(World* world) {
   reserve_for(&bp.shape_fat, shapes);
   reserve_for(&bp.shape_kind, shapes);
   reserve_for(&bp.shape_filter, shapes);
+  reserve_for(&bp.shape_box, shapes);
+  reserve_for(&bp.shape_changed, shapes);
+  reserve_for(&bp.changed, shapes / 4 + 64);
+  reserve_for(&bp.previous, pairs);
+  reserve_for(&bp.grid.outlier_shapes, shapes);
+  reserve_for(&bp.grid.dirty, shapes);
+  reserve_for(&bp.grid.is_dirty, shapes);
   reserve_for(&bp.counts, shapes + 1);
   reserve_for(&bp.sap.endpoints, 2 * shapes);
   reserve_for(&bp.sap.merged, 2 * shapes);
@@ -375,6 +635,7 @@ Status world_set_custom_filter(WorldId id, CustomFilterFn filter, void* context)
   Status s = resolve_world(id, "world_set_custom_filter", true, &world);
   if (!s.ok()) return s;
   world->broad_phase.custom_filter = filter;
+  world->broad_phase.pairs_valid = false;  // pairs were filtered by the old one
   world->broad_phase.custom_context = filter == nullptr ? nullptr : context;
   return s;
 }

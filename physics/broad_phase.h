@@ -39,6 +39,9 @@
 //   no other file has to tell the broad phase about creates, destroys or
 //   teleports, and broad_phase_reset() (snapshot restore, kind change) only
 //   has to forget it.
+//   * Carry-over (broad_phase.cpp): when few proxies changed since the last
+//     update, only they are searched and the other pairs are kept; the list
+//     is the full search's, bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -110,6 +113,12 @@ struct Grid {
   std::vector<uint32_t> bucket_start;   ///< table size + 1 offsets into entries
   std::vector<GridEntry> entries;       ///< grid proxies in bucket order
   std::vector<int32_t> outliers;        ///< proxy positions of outliers, ascending
+  std::vector<int32_t> outlier_shapes;  ///< the same outliers as shape indices (positions shift between gathers)
+  // Carry-over updates (broad_phase.cpp, "Carry-over"): shapes whose box,
+  // kind or filter changed since this grid was built. Their entries (and
+  // outlier slots) are stale; the search reads them from `dirty` instead.
+  std::vector<int32_t> dirty;           ///< shape indices, in the order they became dirty
+  std::vector<uint8_t> is_dirty;        ///< by shape index: 1 when listed in `dirty`
   int64_t cell_size = 0;                ///< raw Q32 (last update; for tests); 0 while no grid was built
   uint32_t bucket_bits = 0;             ///< table size = 1 << bucket_bits
   // The occupied cell range and layout, kept for queries.
@@ -156,6 +165,17 @@ struct BroadPhase {
   std::vector<uint8_t> shape_kind;     ///< by shape index: k_proxy_*
   std::vector<ProxyFilter> shape_filter;  ///< by shape index: body and filter (valid for proxies)
   std::vector<uint64_t> unsorted; ///< scratch: emitted keys in the structure's visiting order
+  // Carry-over (broad_phase.cpp): what the last update's pairs were computed
+  // from, so pairs between two unchanged proxies can be kept. Never state: a
+  // restore, a kind change or a custom filter change clears pairs_valid.
+  std::vector<AABB> shape_box;          ///< by shape index: Shape::aabb the fat box was computed from
+  int32_t proxy_count = 0;             ///< proxies at the last gather (the lists may not be built in a step)
+  std::vector<uint8_t> shape_changed;  ///< by shape index: kind, fat box or filter differs from the last update
+  std::vector<int32_t> changed;        ///< scratch: shapes with shape_changed set, ascending (while ≤ the limit)
+  int32_t changed_count = 0;           ///< shapes with shape_changed set at the last gather
+  std::vector<ShapePair> previous;     ///< scratch: the last update's pairs during an update
+  std::vector<uint64_t> joint_keys;    ///< World::joints.no_collide_keys at the last update
+  bool pairs_valid = false;            ///< `pairs` and the by-shape arrays describe the last update
   std::vector<int32_t> counts;    ///< scratch: counting sort by lower index
   SweepAndPrune sap;
   Grid grid;
@@ -319,11 +339,30 @@ void grid_update(World* world);
 void tree_sync(World* world);
 void tree_update(World* world);
 void tree_reset(DynamicTree* tree);
-/// Lists the proxies and fills the by-shape arrays (and the sensor list); the
-/// first part of every update and sync. `in_step`: inside world_step, where the
-/// per-shape part may run on the world's workers; false (queries between
-/// steps) runs it on the calling thread and never calls a user task callback.
+/// Fills the by-shape arrays, flags and lists the changed shapes and counts
+/// the proxies; the first part of every update and sync. `in_step`: inside
+/// world_step, where the per-shape part may run on the world's workers and
+/// the proxy lists are left to broad_phase_list_proxies (an update that
+/// carries pairs over may not need them); false (queries between steps)
+/// runs it on the calling thread, never calls a user task callback, and
+/// lists the proxies too.
 void broad_phase_gather_proxies(World* world, bool in_step);
+/// Lists the proxies (bp.proxies, fat_bounds, proxy_dynamic; ascending shape
+/// index) and the sensors from the by-shape arrays of the last gather.
+void broad_phase_list_proxies(World* world);
+/// Carry-over search of one changed proxy (broad_phase.cpp): for every proxy
+/// q the structure offers whose fattened box overlaps p's, emits (p, q)
+/// unless q is p, both are non-dynamic, or q also changed and q < p (that
+/// pair is emitted from q's side). Counts candidates and the search.
+void broad_phase_offer_changed(World* world, int32_t p, int32_t q);
+/// The carry-over searches of the structures: every changed proxy (bp.changed)
+/// against every proxy, through broad_phase_offer_changed.
+void grid_search_changed(World* world);
+/// Sweep-and-prune's split of the proxies for sap_query (broad_phase_query.cpp).
+void sap_prepare_query(BroadPhase* bp);
+/// tree_sync restricted to the changed shapes (bp.changed, ascending): the
+/// same tree as tree_sync, since an unchanged shape's leaf needs no work.
+void tree_sync_changed(World* world);
 /// Checks the tree's structure (parents, heights, boxes containing children);
 /// for tests. Returns the number of leaves, or −1 when broken.
 int32_t tree_validate(const DynamicTree& tree);

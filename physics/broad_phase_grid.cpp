@@ -148,6 +148,10 @@ bool grid_build(World* world) {
   const size_t n = bp.proxies.size();
   g.cell_size = 0;
   g.outliers.clear();
+  g.outlier_shapes.clear();
+  // Every entry is built from the current boxes: none is stale.
+  for (const int32_t s : g.dirty) g.is_dirty[static_cast<size_t>(s)] = 0;
+  g.dirty.clear();
   g.entries.clear();
   g.min_cx = 0;
   g.min_cy = 0;
@@ -197,6 +201,7 @@ bool grid_build(World* world) {
         !within_limit(b.upper.y)) {
       g.proxy_cell[i] = k_outlier_cell;
       g.outliers.push_back(static_cast<int32_t>(i));
+      g.outlier_shapes.push_back(bp.proxies[i]);
       continue;
     }
     const int64_t cx = floor_div(b.lower.x.raw + b.upper.x.raw, span);
@@ -343,6 +348,40 @@ void grid_update(World* world) {
     }
   }
   bp.candidate_count += candidates;
+}
+
+void grid_search_changed(World* world) {
+  BroadPhase& bp = world->broad_phase;
+  Grid& g = bp.grid;
+  const size_t cap = static_cast<size_t>(id_pool_capacity(world->shape_pool));
+  if (g.is_dirty.size() < cap) g.is_dirty.resize(cap, 0);
+  for (const int32_t s : bp.changed) {
+    const size_t si = static_cast<size_t>(s);
+    if (g.is_dirty[si] != 0) continue;
+    g.is_dirty[si] = 1;
+    g.dirty.push_back(s);
+  }
+  // Stale entries are read from the dirty list, each against every changed
+  // proxy: rebuild (which empties the list) once that costs more than a
+  // rebuild's pass over the proxies.
+  const size_t n = static_cast<size_t>(bp.proxy_count);
+  const size_t d = g.dirty.size();
+  if (d > 32 + n / 64 || d * bp.changed.size() > 4 * n + 1024) {
+    broad_phase_list_proxies(world);
+    (void)grid_build(world);
+  }
+  for (const int32_t p : bp.changed) {
+    const size_t pi = static_cast<size_t>(p);
+    if (bp.shape_kind[pi] == k_proxy_none) continue;
+    const uint8_t* dirty = g.is_dirty.data();
+    for_each_entry_near(g, bp.shape_fat[pi], [&](const GridEntry& e) {
+      if (dirty[static_cast<size_t>(e.shape)] == 0) broad_phase_offer_changed(world, p, e.shape);
+    });
+    for (const int32_t s : g.outlier_shapes) {
+      if (dirty[static_cast<size_t>(s)] == 0) broad_phase_offer_changed(world, p, s);
+    }
+    for (const int32_t s : g.dirty) broad_phase_offer_changed(world, p, s);
+  }
 }
 
 void grid_query(World* world, BroadPhaseQuery* q) {

@@ -44,6 +44,8 @@ uint64_t x_width(const AABB& b) {
   return static_cast<uint64_t>(b.upper.x.raw) - static_cast<uint64_t>(b.lower.x.raw);
 }
 
+}  // namespace
+
 /// Splits the proxies for sap_query (file comment).
 void sap_prepare_query(BroadPhase* bp) {
   SweepAndPrune& sap = bp->sap;
@@ -65,6 +67,8 @@ void sap_prepare_query(BroadPhase* bp) {
   }
   sap.query_width = static_cast<int64_t>(widest);  // ≤ 2^62: sanitised, fattened boxes
 }
+
+namespace {
 
 void naive_query(World* world, BroadPhaseQuery* q) {
   BroadPhase& bp = world->broad_phase;

@@ -246,6 +246,31 @@ bool needs_reinsert(const AABB& stored, const AABB& fat) {
   return !aabb_contains(aabb_fatten(fat, k_tree_margin * 4), stored);
 }
 
+/// Brings shape s's leaf up to date: removed when the shape takes no part
+/// (or its slot is at or beyond `cap`), re-inserted when its fattened box
+/// left the leaf's box (needs_reinsert), inserted when new.
+void sync_shape(BroadPhase* bp, int32_t s, int32_t cap) {
+  DynamicTree& t = bp->tree;
+  const size_t si = static_cast<size_t>(s);
+  int32_t leaf = t.leaf_of_shape[si];
+  const bool takes_part = s < cap && bp->shape_kind[si] != k_proxy_none;
+  if (leaf != -1) {
+    if (takes_part && !needs_reinsert(node(&t, leaf).box, bp->shape_fat[si])) return;
+    remove_leaf(&t, leaf);
+    free_node(&t, leaf);
+    t.leaf_of_shape[si] = -1;
+    leaf = -1;
+  }
+  if (!takes_part) return;
+  leaf = allocate_node(&t);
+  TreeNode& n = node(&t, leaf);
+  n.box = aabb_fatten(bp->shape_fat[si], k_tree_margin);
+  n.shape = s;
+  n.height = 0;
+  insert_leaf(&t, leaf);
+  t.leaf_of_shape[si] = leaf;
+}
+
 }  // namespace
 
 void tree_reset(DynamicTree* tree) {
@@ -264,26 +289,15 @@ void tree_sync(World* world) {
   // Synchronise with the shapes, ascending shape index (slots beyond the
   // pool, which a restore may leave, lose their leaves).
   const int32_t slots = static_cast<int32_t>(t.leaf_of_shape.size());
-  for (int32_t s = 0; s < slots; ++s) {
-    const size_t si = static_cast<size_t>(s);
-    int32_t leaf = t.leaf_of_shape[si];
-    const bool takes_part = s < cap && bp.shape_kind[si] != k_proxy_none;
-    if (leaf != -1) {
-      if (takes_part && !needs_reinsert(node(&t, leaf).box, bp.shape_fat[si])) continue;
-      remove_leaf(&t, leaf);
-      free_node(&t, leaf);
-      t.leaf_of_shape[si] = -1;
-      leaf = -1;
-    }
-    if (!takes_part) continue;
-    leaf = allocate_node(&t);
-    TreeNode& n = node(&t, leaf);
-    n.box = aabb_fatten(bp.shape_fat[si], k_tree_margin);
-    n.shape = s;
-    n.height = 0;
-    insert_leaf(&t, leaf);
-    t.leaf_of_shape[si] = leaf;
-  }
+  for (int32_t s = 0; s < slots; ++s) sync_shape(&bp, s, cap);
+}
+
+void tree_sync_changed(World* world) {
+  BroadPhase& bp = world->broad_phase;
+  DynamicTree& t = bp.tree;
+  const int32_t cap = id_pool_capacity(world->shape_pool);
+  if (t.leaf_of_shape.size() < static_cast<size_t>(cap)) t.leaf_of_shape.resize(static_cast<size_t>(cap), -1);
+  for (const int32_t s : bp.changed) sync_shape(&bp, s, cap);
 }
 
 void tree_update(World* world) {

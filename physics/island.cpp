@@ -144,27 +144,46 @@ void wake_all_bodies(World* world) {
 void stage_wake_touched(World* world, StepContext* context) {
   // The rule, contact by contact in contact order: a touching contact wakes
   // the island of a sleeping body whose other body wakes others. Bodies only
-  // go from asleep to awake here, so (1) with no sleeper at the start there
-  // is nothing to do, and (2) until the first wake of this pass every body's
-  // state is still its state at the start, which a per-body byte array
-  // holds. So the pass is in two parts: the first contact that wakes
-  // something is found from the start states alone (a pure test: blocks of
-  // k_wake_scan_block contacts on any thread, each reporting its first
-  // candidate, combined in block order into the lowest); from there on the
-  // contacts are walked serially reading the Body records (a woken body now
-  // wakes others). Same wakes in the same order as testing the records for
-  // every contact; a step that wakes nobody (a sleeping pile while the
-  // awake bodies stay away) pays only the parallel scan.
+  // go from asleep to awake here, so until the first wake of this pass every
+  // body's state is still its state at the start. So the pass is in two
+  // parts: the first contact that wakes something is found from the start
+  // states alone (a pure test: blocks of k_wake_scan_block contacts on any
+  // thread, each reporting its first candidate, combined in block order into
+  // the lowest); from there on the contacts are walked serially reading the
+  // Body records (a woken body now wakes others). Same wakes in the same
+  // order as testing the records for every contact.
+  //
+  // Only a contact with a body that wakes others — a simulated one — can
+  // wake, and at the start of this pass (right after update_contacts, before
+  // any wake) those are exactly the awake index's contacts: the scan reads
+  // only them (World::awake_contacts, in contact order), not the contacts of
+  // sleeping islands (while awake_contacts_all the index is the whole list:
+  // the scan reads it all). The start states come from one of two places, the
+  // cheaper for the counts at hand (both give the same answer):
+  //   * few awake contacts for the bodies (a sleeping pile): the scan reads
+  //     the Body records themselves, so no pass over every body;
+  //   * otherwise a per-body byte array of start states, filled in parallel,
+  //     which also counts the sleepers: with none (everything awake) the
+  //     scan is skipped.
   const int32_t end = id_pool_capacity(world->body_pool);
   constexpr uint8_t k_sleeping = 1, k_wakes_others = 2;
   Arena* arena = &world->arena;
-  uint8_t* start = arena_allocate_array<uint8_t>(arena, end, "wake_start_states");
-  const int32_t body_blocks = block_count_of(end, k_sleep_block);
-  int32_t* sleepers_per_block = arena_allocate_array<int32_t>(arena, body_blocks, "wake_sleepers_per_block");
-  {
+  const int32_t contact_count = static_cast<int32_t>(world->contacts.size());
+  int32_t first = contact_count;  // the first contact whose start states wake a sleeper
+  const int32_t scan_count = awake_contact_count(*world);
+  const bool use_states = 2 * static_cast<int64_t>(scan_count) > end;
+  uint8_t* start = nullptr;
+  int32_t* sleepers_per_block = nullptr;
+  int32_t sleepers = 1;  // unknown without the states: scan
+  if (use_states) {
+    start = arena_allocate_array<uint8_t>(arena, end, "wake_start_states");
+    const int32_t body_blocks = block_count_of(end, k_sleep_block);
+    sleepers_per_block = arena_allocate_array<int32_t>(arena, body_blocks, "wake_sleepers_per_block");
     const World* w = world;
+    uint8_t* states = start;
+    int32_t* per_block = sleepers_per_block;
     parallel_for(context->tasks, "wake_start_states", end, k_sleep_block, [=](int32_t begin, int32_t stop) {
-      int32_t sleepers = 0;
+      int32_t count = 0;
       for (int32_t b = begin; b < stop; ++b) {
         const Body& body = w->bodies[static_cast<size_t>(b)];
         uint8_t state = 0;
@@ -172,37 +191,38 @@ void stage_wake_touched(World* world, StepContext* context) {
           if (is_sleeping(body)) state = k_sleeping;
           if (wakes_others(body)) state = k_wakes_others;
         }
-        sleepers += state == k_sleeping ? 1 : 0;
-        start[b] = state;
+        count += state == k_sleeping ? 1 : 0;
+        states[b] = state;
       }
-      sleepers_per_block[begin / k_sleep_block] = sleepers;
+      per_block[begin / k_sleep_block] = count;
     });
+    sleepers = 0;
+    for (int32_t k = 0; k < body_blocks; ++k) sleepers += sleepers_per_block[k];
   }
-  int32_t sleepers = 0;
-  for (int32_t k = 0; k < body_blocks; ++k) sleepers += sleepers_per_block[k];
-  const int32_t contact_count = static_cast<int32_t>(world->contacts.size());
-  int32_t first = contact_count;  // the first contact whose start states wake a sleeper
-  // Only a contact with a body that wakes others — a simulated one — can
-  // wake, and at the start of this pass (right after update_contacts, before
-  // any wake) those are exactly the awake index's contacts: the scan reads
-  // only them (World::awake_contacts, in contact order), not the contacts of
-  // sleeping islands.
-  // (While awake_contacts_all the index is the whole list: scan it all.)
-  const int32_t scan_count = awake_contact_count(*world);
   if (sleepers > 0 && scan_count > 0) {
     world->contacts_read_after_update += scan_count;
     const int32_t scan_blocks = block_count_of(scan_count, k_wake_scan_block);
     int32_t* first_per_block = arena_allocate_array<int32_t>(arena, scan_blocks, "wake_first_per_block");
     const Contact* contacts = world->contacts.data();
     const int32_t* scan = world->awake_contacts_all ? nullptr : world->awake_contacts.data();
+    const Body* bodies = world->bodies.data();
+    const uint8_t* states = start;
     parallel_for(context->tasks, "wake_touched_scan", scan_count, k_wake_scan_block,
                  [=](int32_t begin, int32_t stop) {
                    int32_t found = stop;
                    for (int32_t k = begin; k < stop; ++k) {
                      const Contact& c = contacts[scan != nullptr ? scan[k] : k];
                      if ((c.flags & k_contact_touching) == 0) continue;
-                     const uint8_t sa = start[c.body_a], sb = start[c.body_b];
-                     if ((sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others)) {
+                     bool wakes;
+                     if (states != nullptr) {
+                       const uint8_t sa = states[c.body_a], sb = states[c.body_b];
+                       wakes = (sa == k_sleeping && sb == k_wakes_others) || (sb == k_sleeping && sa == k_wakes_others);
+                     } else {
+                       const Body& a = bodies[c.body_a];
+                       const Body& b = bodies[c.body_b];
+                       wakes = (is_sleeping(a) && wakes_others(b)) || (is_sleeping(b) && wakes_others(a));
+                     }
+                     if (wakes) {
                        found = k;
                        break;
                      }
@@ -227,8 +247,10 @@ void stage_wake_touched(World* world, StepContext* context) {
     if (is_sleeping(a) && wakes_others(b)) wake_body_island(world, c.body_a);
     if (is_sleeping(b) && wakes_others(a)) wake_body_island(world, c.body_b);
   }
-  arena_free(arena, sleepers_per_block);
-  arena_free(arena, start);
+  if (use_states) {
+    arena_free(arena, sleepers_per_block);
+    arena_free(arena, start);
+  }
 }
 
 void stage_update_sleep(World* world, StepContext* context) {

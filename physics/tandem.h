@@ -324,6 +324,13 @@ struct BroadPhaseStats {
   /// with a sleeping pile and nothing waking it, a few times awake_contacts,
   /// never the whole list. A work counter, not state.
   int64_t contacts_read_after_update = 0;
+  /// Proxies whose pairs the last update searched for: every proxy, or, when
+  /// few changed (box, kind or filter) since the update before, only those —
+  /// the pairs between unchanged proxies are carried over. With a sleeping
+  /// pile and nothing moving, 0. A work counter, not state.
+  int32_t proxies_searched = 0;
+  /// Pairs the last update kept from the update before without a search.
+  int32_t pairs_carried = 0;
 };
 
 /// Selects the broad phase used from the next step on (any BroadPhaseKind).
