@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "../physics/physics_test_support.h"
 #include "physics/joint.h"
 #include "physics/tandem.h"
 #include "physics/world.h"
@@ -37,16 +38,9 @@ struct PileWorld {
 };
 
 BodyId add_box(WorldId world, Q32 x, Q32 y, bool awake) {
-  BodyDef bd = default_body_def();
-  bd.type = BodyType::dynamic_body;
-  bd.position = {x, y};
+  BodyDef bd = test_support::body_def_at({x, y});
   bd.is_awake = awake;
-  const Result<BodyId> b = create_body(world, bd);
-  REQUIRE(b.ok());
-  Polygon box;
-  REQUIRE(make_box(0.25_q32, 0.25_q32, &box).ok());
-  REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-  return b.value;
+  return test_support::add_box_body(world, bd, 0.25_q32, 0.25_q32);
 }
 
 PileWorld make_pile_world(BroadPhaseKind kind, int32_t workers, bool reference) {
@@ -58,28 +52,16 @@ PileWorld make_pile_world(BroadPhaseKind kind, int32_t workers, bool reference) 
   PileWorld pw;
   pw.id = w.value;
   if (reference) REQUIRE(world_set_custom_filter(pw.id, accept_all, nullptr).ok());
-  BodyDef gd = default_body_def();
-  gd.position = {0_q32, -1_q32};
-  const Result<BodyId> g = create_body(pw.id, gd);
-  REQUIRE(g.ok());
-  Polygon ground;
-  REQUIRE(make_box(60_q32, 1_q32, &ground).ok());
-  REQUIRE(create_polygon_shape(g.value, default_shape_def(), ground).ok());
+  test_support::add_box_body(pw.id, test_support::body_def_at({0_q32, -1_q32}, BodyType::static_body), 60_q32, 1_q32);
   for (int32_t c = 0; c < k_columns; ++c) {
     for (int32_t r = 0; r < k_rows; ++r) {
       pw.block.push_back(add_box(pw.id, Q32::from_ratio(c, 2), Q32::from_ratio(2 * r + 1, 4), false));
     }
   }
   for (int32_t i = 0; i < 5; ++i) add_box(pw.id, -20_q32, Q32::from_ratio(2 * i + 1, 4), true);  // an awake stack
-  BodyDef bd = default_body_def();
-  bd.type = BodyType::dynamic_body;
-  bd.position = {-4_q32, 0.5_q32};
+  BodyDef bd = test_support::body_def_at({-4_q32, 0.5_q32});
   bd.linear_velocity = {4_q32, 0_q32};
-  const Result<BodyId> ball = create_body(pw.id, bd);
-  REQUIRE(ball.ok());
-  ShapeDef heavy = default_shape_def();
-  heavy.density = 4_q32;
-  REQUIRE(create_circle_shape(ball.value, heavy, Circle{{}, 0.5_q32}).ok());
+  test_support::add_ball_body(pw.id, bd, 0.5_q32, 4_q32);
   return pw;
 }
 

@@ -54,15 +54,9 @@ SleepingRun run_sleeping_world(int32_t workers, int32_t steps, int32_t restore_e
     test_support::add_box_body(world, test_support::body_def_at({-30_q32, Q32::from_ratio(2 * i + 1, 4)}), 0.25_q32,
                                0.25_q32);
   }
-  {
-    BodyDef bd = test_support::body_def_at({-4_q32, 0.5_q32});
-    bd.linear_velocity = {4_q32, 0_q32};
-    const Result<BodyId> ball = create_body(world, bd);
-    REQUIRE(ball.ok());
-    ShapeDef heavy = default_shape_def();
-    heavy.density = 4_q32;
-    REQUIRE(create_circle_shape(ball.value, heavy, Circle{{}, 0.5_q32}).ok());
-  }
+  BodyDef ball = test_support::body_def_at({-4_q32, 0.5_q32});
+  ball.linear_velocity = {4_q32, 0_q32};
+  test_support::add_ball_body(world, ball, 0.5_q32, 4_q32);
 
   SleepingRun run;
   const Q32 dt = Q32::from_ratio(1, 60);
@@ -129,37 +123,25 @@ TEST_CASE("a sleeper touched only by awake bodies wakes while every contact has 
     WorldDef wd = default_world_def();
     wd.gravity = {0_q32, 0_q32};
     wd.worker_count = workers;
-    const Result<WorldId> w = create_world(wd);
-    REQUIRE(w.ok());
-    Polygon box;
-    REQUIRE(make_box(0.5_q32, 0.5_q32, &box).ok());
-    BodyDef sleeper_def = default_body_def();
-    sleeper_def.type = BodyType::dynamic_body;
+    test_support::ScopedWorld w(wd);
+    BodyDef sleeper_def = test_support::body_def_at({0_q32, 0_q32});
     sleeper_def.is_awake = false;
-    const Result<BodyId> sleeper = create_body(w.value, sleeper_def);
-    REQUIRE(sleeper.ok());
-    REQUIRE(create_polygon_shape(sleeper.value, default_shape_def(), box).ok());
-    BodyDef ball_def = default_body_def();
-    ball_def.type = BodyType::dynamic_body;
-    ball_def.position = {-2_q32, 0_q32};
+    const BodyId sleeper = test_support::add_box_body(w.id, sleeper_def, 0.5_q32, 0.5_q32);
+    BodyDef ball_def = test_support::body_def_at({-2_q32, 0_q32});
     ball_def.linear_velocity = {3_q32, 0_q32};
-    const Result<BodyId> ball = create_body(w.value, ball_def);
-    REQUIRE(ball.ok());
-    REQUIRE(create_circle_shape(ball.value, default_shape_def(), Circle{{}, 0.25_q32}).ok());
+    test_support::add_ball_body(w.id, ball_def, 0.25_q32);
     bool counted_all = false;
     for (int32_t i = 0; i < 60; ++i) {
-      REQUIRE(world_step(w.value, Q32::from_ratio(1, 60)).ok());
-      hashes->push_back(world_state_hash(w.value));
-      const BroadPhaseStats s = world_broad_phase_stats(w.value);
+      REQUIRE(world_step(w.id, Q32::from_ratio(1, 60)).ok());
+      hashes->push_back(world_state_hash(w.id));
+      const BroadPhaseStats s = world_broad_phase_stats(w.id);
       if (s.pairs > 0) {
         CHECK(s.awake_contacts == s.pairs);  // the ball's contact: awake
         counted_all = true;
       }
     }
     CHECK(counted_all);
-    const bool woke = body_is_awake(sleeper.value);
-    REQUIRE(destroy_world(w.value).ok());
-    return woke;
+    return body_is_awake(sleeper);
   };
   std::vector<uint64_t> one, two;
   CHECK(run(1, &one));

@@ -41,6 +41,18 @@ inline BodyId add_box_body(WorldId world, const BodyDef& def, Q32 hx, Q32 hy) {
   return body.value;
 }
 
+/// A body made from `def` carrying one circle of `radius`, m, at its origin
+/// (default shape def with `density`, kg/m²); the test fails where either is
+/// refused.
+inline BodyId add_ball_body(WorldId world, const BodyDef& def, Q32 radius, Q32 density = default_shape_def().density) {
+  const Result<BodyId> body = create_body(world, def);
+  REQUIRE(body.ok());
+  ShapeDef sd = default_shape_def();
+  sd.density = density;
+  REQUIRE(create_circle_shape(body.value, sd, Circle{{}, radius}).ok());
+  return body.value;
+}
+
 /// A single-threaded task system that runs each task's items one at a time
 /// from the last to the first (WorldDef::enqueue_task / finish_task with
 /// user_task_context = &a ReversingTasks).
