@@ -79,16 +79,6 @@ bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b)
 
 namespace {
 
-bool same_box(const AABB& a, const AABB& b) {
-  return a.lower.x.raw == b.lower.x.raw && a.lower.y.raw == b.lower.y.raw && a.upper.x.raw == b.upper.x.raw &&
-         a.upper.y.raw == b.upper.y.raw;
-}
-
-bool same_filter(const ProxyFilter& a, const ProxyFilter& b) {
-  return a.body == b.body && a.group_index == b.group_index && a.category_bits == b.category_bits &&
-         a.mask_bits == b.mask_bits;
-}
-
 /// The filters after the box test: shapes_should_collide, then the custom
 /// filter with (lower, higher). Both shapes are proxies (not sensors, bodies
 /// enabled) and one is dynamic, so shapes_should_collide reduces to
@@ -169,7 +159,7 @@ void broad_phase_gather_proxies(World* world, bool in_step) {
           ++proxies;
           // The fat box is a function of the stored AABB: recomputed only
           // when that changed.
-          differs = kind != old_kind || !same_box(shape.aabb, boxes[si]) || !same_filter(filter, filters[si]);
+          differs = kind != old_kind || shape.aabb != boxes[si] || filter != filters[si];
           if (differs) {
             boxes[si] = shape.aabb;
             fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);
@@ -387,13 +377,12 @@ Q32 offer_changed_visit(void* context, int32_t q) {
 /// Whether this update may carry pairs over (see "Carry-over" in the file
 /// comment): the last update's pairs are valid, no custom filter (a user
 /// callback is only promised to be deterministic, not unchanged between
-/// steps), the joints' no-collide set is the same, and few proxies changed.
-bool can_carry_over(const World& world) {
-  const BroadPhase& bp = world.broad_phase;
-  if (!bp.pairs_valid || bp.custom_filter != nullptr) return false;
+/// steps), the joints' no-collide set is the same (`same_joint_keys`), and
+/// few proxies changed.
+bool can_carry_over(const BroadPhase& bp, bool same_joint_keys) {
+  if (!bp.pairs_valid || bp.custom_filter != nullptr || !same_joint_keys) return false;
   if (static_cast<size_t>(bp.changed_count) != bp.changed.size()) return false;  // more than bp.changed holds
-  if (4 * static_cast<int64_t>(bp.changed_count) > int64_t{bp.proxy_count} + 128) return false;
-  return bp.joint_keys == world.joints.no_collide_keys;
+  return 4 * static_cast<int64_t>(bp.changed_count) <= int64_t{bp.proxy_count} + 128;
 }
 
 /// The carry-over update: the changed proxies are searched against every
@@ -484,7 +473,9 @@ void broad_phase_update_pairs(World* world) {
   bp.stats = BroadPhaseStats{};
   bp.candidate_count = 0;
   broad_phase_gather_proxies(world, true);
-  if (can_carry_over(*world)) {
+  // Compared once per update (a copy of the list only when it changed).
+  const bool same_joint_keys = bp.joint_keys == world->joints.no_collide_keys;
+  if (can_carry_over(bp, same_joint_keys)) {
     carry_over_update(world);
   } else {
     broad_phase_list_proxies(world);
@@ -497,7 +488,7 @@ void broad_phase_update_pairs(World* world) {
   } else {
     std::fill(bp.shape_changed.begin(), bp.shape_changed.end(), uint8_t{0});
   }
-  if (bp.joint_keys != world->joints.no_collide_keys) bp.joint_keys = world->joints.no_collide_keys;
+  if (!same_joint_keys) bp.joint_keys = world->joints.no_collide_keys;
   bp.pairs_valid = true;
   bp.stats.proxies = bp.proxy_count;
   bp.stats.pairs = static_cast<int32_t>(bp.pairs.size());
