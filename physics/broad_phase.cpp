@@ -79,6 +79,20 @@ bool shapes_should_collide(const World& world, int32_t shape_a, int32_t shape_b)
 
 namespace {
 
+// The per-shape change test of broad_phase_gather_proxies, on raw words.
+// Written out rather than AABB's and a defaulted ProxyFilter operator==:
+// with those, g++ 12 -O3 spent ~10 more instructions per shape (circles-16k
+// broad phase 12.87 -> 13.03 M per step, callgrind).
+bool same_raw_box(const AABB& a, const AABB& b) {
+  return a.lower.x.raw == b.lower.x.raw && a.lower.y.raw == b.lower.y.raw && a.upper.x.raw == b.upper.x.raw &&
+         a.upper.y.raw == b.upper.y.raw;
+}
+
+bool same_filter(const ProxyFilter& a, const ProxyFilter& b) {
+  return a.body == b.body && a.group_index == b.group_index && a.category_bits == b.category_bits &&
+         a.mask_bits == b.mask_bits;
+}
+
 /// The filters after the box test: shapes_should_collide, then the custom
 /// filter with (lower, higher). Both shapes are proxies (not sensors, bodies
 /// enabled) and one is dynamic, so shapes_should_collide reduces to
@@ -159,7 +173,7 @@ void broad_phase_gather_proxies(World* world, bool in_step) {
           ++proxies;
           // The fat box is a function of the stored AABB: recomputed only
           // when that changed.
-          differs = kind != old_kind || shape.aabb != boxes[si] || filter != filters[si];
+          differs = kind != old_kind || !same_raw_box(shape.aabb, boxes[si]) || !same_filter(filter, filters[si]);
           if (differs) {
             boxes[si] = shape.aabb;
             fats[si] = aabb_fatten(broad_phase_sanitize_box(shape.aabb), k_speculative_distance);

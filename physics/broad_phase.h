@@ -153,7 +153,6 @@ struct ProxyFilter {
   int32_t group_index = 0;
   uint64_t category_bits = 0;
   uint64_t mask_bits = 0;
-  friend bool operator==(const ProxyFilter&, const ProxyFilter&) = default;
 };
 
 /// Broad-phase state kept between steps (buffers that only grow).

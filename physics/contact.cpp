@@ -134,6 +134,24 @@ void update_manifold(const World& world, Contact* c, const Manifold* previous, c
   }
 }
 
+/// Builds World::awake_contacts lazily, for both paths of update_contacts:
+/// contacts are noted in ascending index, and the list is written only from
+/// the first contact with no moving body on (the ones before it filled in
+/// then), so while every contact has a simulated body it stays empty and
+/// `all` stays true (World::awake_contacts_all).
+struct AwakeIndexBuilder {
+  std::vector<int32_t>* awake;  ///< World::awake_contacts, cleared
+  bool all = true;
+  void note(int32_t index, bool moves) {
+    if (all && !moves) {
+      all = false;
+      for (int32_t k = 0; k < index; ++k) awake->push_back(k);
+    } else if (!all && moves) {
+      awake->push_back(index);
+    }
+  }
+};
+
 /// Sets the fields that name a contact (key, generations, bodies) and its
 /// carried flags; update_manifold writes the rest. The merge path calls it
 /// on a zeroed slot; the in-place path keeps these fields as they are.
@@ -207,20 +225,13 @@ void update_contacts(World* world) {
     // The awake index, only once a contact without a simulated body turns
     // up (before it every contact is awake; with none, awake_contacts_all).
     const int32_t count = static_cast<int32_t>(old_list.size());
-    int32_t first_still = 0;
-    while (first_still < count && (moving[old_list[static_cast<size_t>(first_still)].body_a] |
-                                   moving[old_list[static_cast<size_t>(first_still)].body_b]) != 0) {
-      ++first_still;
+    AwakeIndexBuilder index_builder{&awake};
+    for (int32_t i = 0; i < count; ++i) {
+      const Contact& c = old_list[static_cast<size_t>(i)];
+      index_builder.note(i, (moving[c.body_a] | moving[c.body_b]) != 0);
     }
-    const bool all = first_still == count;
+    const bool all = index_builder.all;
     world->awake_contacts_all = all;
-    if (!all) {
-      for (int32_t i = 0; i < first_still; ++i) awake.push_back(i);
-      for (int32_t i = first_still + 1; i < count; ++i) {
-        const Contact& c = old_list[static_cast<size_t>(i)];
-        if ((moving[c.body_a] | moving[c.body_b]) != 0) awake.push_back(i);
-      }
-    }
     // The narrow phase over the awake contacts, each in its own slot: the
     // key, generations, bodies and flags stay (set_contact_identity's
     // fields), update_manifold writes every other field from last step's
@@ -254,19 +265,7 @@ void update_contacts(World* world) {
   next.clear();
   // Per new contact: the index of its old contact, or a k_* mark above.
   int32_t* old_of = arena_allocate_array<int32_t>(arena, static_cast<int32_t>(pairs.size()), "contact_old_index");
-  // The awake index is written only once a contact without a simulated body
-  // turns up (the ones before it are filled in then); while every contact
-  // has one it stays empty and awake_contacts_all says so.
-  bool all = true;
-  const auto note_awake = [&](bool moves) {
-    const int32_t index = static_cast<int32_t>(next.size());
-    if (all && !moves) {
-      all = false;
-      for (int32_t k = 0; k < index; ++k) awake.push_back(k);
-    } else if (!all && moves) {
-      awake.push_back(index);
-    }
-  };
+  AwakeIndexBuilder index_builder{&awake};
   size_t cursor = 0;
   for (const ShapePair& pair : pairs) {
     const uint64_t key = shape_pair_key(pair.shape_a, pair.shape_b);
@@ -287,7 +286,7 @@ void update_contacts(World* world) {
     // A new contact between two bodies that do not move is still computed
     // (it has no manifold yet) but is not an awake contact: no stage after
     // this one has work for it (no constraint, no wake, no island).
-    note_awake(moves);
+    index_builder.note(static_cast<int32_t>(next.size()), moves);
     if (old != nullptr && !moves) {
       // Neither body moves (asleep, static or disabled): the manifold and the
       // impulses are still valid; keep them for when the island wakes.
@@ -299,7 +298,7 @@ void update_contacts(World* world) {
     Contact& c = next.emplace_back();  // zeroed in place (no copy); the narrow phase fills the manifold
     set_contact_identity(&c, pair, gen_a, gen_b, body_a, body_b, old != nullptr ? old->flags : 0);
   }
-  world->awake_contacts_all = all;
+  world->awake_contacts_all = index_builder.all;
   // The narrow phase, per contact (see the file comment).
   Contact* slots = next.data();
   const Contact* olds = old_list.data();
