@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -179,19 +180,20 @@ TEST_CASE("limits: mass ratios 1:10 to 1:100,000 stacked, either way up", "[stre
   CHECK(faults.count() == 0);
 }
 
-TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box ends on the light one or beside it, nothing goes through the ground, no fault",
+TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: both end side by side, nothing goes through the ground, no fault",
           "[stress][limits]") {
   FaultCount faults;
   // A 1 m heavy box thrown down at 10 or 100 m/s onto a 1 m light box resting
   // on a 2 m thick static ground (top face at y = 0), 100,000 kg on 1 kg and
   // 100 kg on 0.001 kg. An impact keeps the true masses (the mass-ratio cap
-  // is for resting contacts only, contact_prepare.cpp): the heavy box
-  // passes into the light one, pressing it up to 0.38 m into the ground
-  // (measured: lowest light centre 0.123 m at 10 m/s, 0.120 m at 100 m/s).
-  // Once the two move together the cap pushes them apart: at 10 m/s the
-  // heavy box ends resting on the light one (centres 0.492 and 1.459 m, as
-  // the stacked 1:100 case), at 100 m/s it has gone past and both end side
-  // by side on the ground (0.5 m). Neither goes through the ground.
+  // is for resting contacts only, contact_prepare.cpp), and such a contact
+  // warm-starts with at most the impulse that changes the light body's
+  // velocity by the restitution threshold (a stored impulse may come from a
+  // capped step: stress seed 6298). The heavy box passes into the light one,
+  // pressing it into the ground (measured: lowest light centre -0.260 m at
+  // 10 m/s, 0.120 m at 100 m/s; the ground's bottom is at -2 m); then the
+  // two are pushed apart and both end side by side on the ground (0.5 m).
+  // Neither goes through the ground.
   struct Case { Q32 light; Q32 heavy; Q32 speed; };
   const Case cases[] = {{1_q32, 100000_q32, 10_q32}, {1_q32, 100000_q32, 100_q32},
                         {0.001_q32, 100_q32, 10_q32}, {0.001_q32, 100_q32, 100_q32}};
@@ -213,13 +215,12 @@ TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: the heavy box ends on th
                 lowest_heavy, ld(body_world_center(light).y), ld(body_world_center(heavy).y));
     INFO(body_mass(heavy).to_double() << " kg at " << c.speed.to_double() << " m/s onto " << body_mass(light).to_double()
                                       << " kg");
-    CHECK(lowest_light > 0.1L);
+    CHECK(lowest_light > -0.3L);
     CHECK(lowest_heavy > 0.35L);
-    // At rest after 5 s, within the linear slop: stacked (10 m/s) or side by
-    // side on the ground (100 m/s).
-    const bool stacked = c.speed < 50_q32;
-    CHECK(ld(body_world_center(light).y) == Approx(stacked ? 0.492L : 0.5L).margin(0.005L));
-    CHECK(ld(body_world_center(heavy).y) == Approx(stacked ? 1.459L : 0.5L).margin(0.005L));
+    // At rest after 5 s, within the linear slop, side by side on the ground.
+    CHECK(ld(body_world_center(light).y) == Approx(0.5L).margin(0.005L));
+    CHECK(ld(body_world_center(heavy).y) == Approx(0.5L).margin(0.005L));
+    CHECK(std::fabs(ld(body_world_center(light).x - body_world_center(heavy).x)) > 0.99L);
   }
   CHECK(faults.count() == 0);
 }
