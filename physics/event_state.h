@@ -34,7 +34,11 @@ struct EventState {
   std::vector<PairRecord> sensor_overlaps;  ///< sensor overlaps at the last step, sorted
   std::vector<PairRecord> sensor_next;      ///< scratch, swapped
   std::vector<HitCandidate> hit_candidates;
-  std::vector<Transform> start_transforms;  ///< by body index, at the start of the step
+  /// Body indices, ascending, of the bodies this step moved (their transform
+  /// differs from the step's start): written by stage_finalize_bodies, which
+  /// sees every simulated body — the only ones a step moves — and compares
+  /// the pose it writes with the one it replaces.
+  std::vector<int32_t> moved_bodies;
   std::vector<ContactBeginEvent> contact_begin;
   std::vector<ContactEndEvent> contact_end;
   std::vector<ContactHitEvent> contact_hit;
@@ -48,8 +52,8 @@ struct EventState {
   bool touching_in_sync = false;
 };
 
-/// Called by world_step right after the contact update: records start
-/// transforms and hit candidates.
+/// Called by world_step right after the contact update: records hit
+/// candidates.
 void events_after_contacts(World* world);
 /// Empties the six reported lists (contact begin/end/hit, sensor begin/end,
 /// body move), keeping their capacity: the start of events_after_step, and a

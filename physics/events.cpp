@@ -34,10 +34,6 @@ bool same_generations(const PairRecord& a, const PairRecord& b) {
   return a.generation_a == b.generation_a && a.generation_b == b.generation_b;
 }
 
-bool transforms_equal(const Transform& a, const Transform& b) {
-  return a.p.x.raw == b.p.x.raw && a.p.y.raw == b.p.y.raw && a.q.c.raw == b.q.c.raw && a.q.s.raw == b.q.s.raw;
-}
-
 /// Merges the sorted old and new sets: on_begin(new record) for records only
 /// in `next` (or with other generations), on_end(old record) for records only
 /// in `old`.
@@ -113,10 +109,6 @@ void reserve_for(std::vector<T>* v, size_t use) {
 
 void events_after_contacts(World* w) {
   EventState& e = w->events;
-  const size_t bodies = static_cast<size_t>(id_pool_capacity(w->body_pool));
-  if (e.start_transforms.size() < bodies) e.start_transforms.resize(bodies);  // grows only with the body count
-  for (size_t i = 0; i < bodies; ++i) e.start_transforms[i] = w->body_sims[i].transform;
-
   e.hit_candidates.clear();
   // Hits need a shape with hit events (off by default): one pass over the
   // shapes is cheaper than a pass over the contacts, which outnumber them.
@@ -237,17 +229,11 @@ void emit_hits_and_rest(World* w) {
       });
   std::swap(e.sensor_overlaps, e.sensor_next);
 
-  // Moves, in body index order.
-  const int32_t bodies = id_pool_capacity(w->body_pool);
-  for (int32_t i = 0; i < bodies; ++i) {
-    if (!id_pool_is_alive(w->body_pool, i)) continue;
-    if (w->bodies[static_cast<size_t>(i)].type == BodyType::static_body) continue;
-    const Transform now = w->body_sims[static_cast<size_t>(i)].transform;
-    if (static_cast<size_t>(i) < e.start_transforms.size() &&
-        transforms_equal(now, e.start_transforms[static_cast<size_t>(i)])) {
-      continue;
-    }
-    e.body_move.push_back(BodyMoveEvent{make_body_id(*w, i), now, !w->bodies[static_cast<size_t>(i)].awake});
+  // Moves, in body index order: the bodies finalize saw move (only
+  // simulated bodies move in a step, so the sleeping ones cost nothing).
+  for (const int32_t i : e.moved_bodies) {
+    const size_t bi = static_cast<size_t>(i);
+    e.body_move.push_back(BodyMoveEvent{make_body_id(*w, i), w->body_sims[bi].transform, !w->bodies[bi].awake});
   }
 }
 
@@ -266,7 +252,7 @@ void events_reserve_headroom(World* w) {
   reserve_for(&e.sensor_begin, e.sensor_begin.size());
   reserve_for(&e.sensor_end, e.sensor_end.size());
   reserve_for(&e.body_move, e.body_move.size());
-  reserve_for(&e.start_transforms, static_cast<size_t>(id_pool_capacity(w->body_pool)));
+  reserve_for(&e.moved_bodies, static_cast<size_t>(id_pool_capacity(w->body_pool)));
 }
 
 Result<ContactEvents> world_contact_events(WorldId id) {

@@ -240,12 +240,15 @@ void stage_finalize_bodies(World* world, StepContext* context) {
   const int32_t blocks = block_count_of(count, k_body_block);
   uint8_t* left_bounds = arena_allocate_array<uint8_t>(arena, blocks, "left_bounds_per_block");
   for (int32_t k = 0; k < blocks; ++k) left_bounds[k] = 0;
+  // 1 per solver body whose pose changed (the move events, events.cpp).
+  uint8_t* moved = arena_allocate_array<uint8_t>(arena, count, "moved_per_body");
   parallel_for(context->tasks, "finalize_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       const int32_t b = context->solver_to_body[i];
       const size_t bi = static_cast<size_t>(b);
       const BodyState& s = context->states[i];
       BodySim& sim = world->body_sims[bi];
+      const Transform before = sim.transform;
       sim.linear_velocity = s.linear_velocity;
       sim.angular_velocity = s.angular_velocity;
       sim.center = s.center;
@@ -253,6 +256,7 @@ void stage_finalize_bodies(World* world, StepContext* context) {
       sim.transform.p = s.center - rotate(s.rotation, sim.local_center);
       sim.force = {};
       sim.torque = Q32::zero();
+      moved[i] = sim.transform == before ? 0 : 1;
       if (!aabb_contains_point(bounds, sim.transform.p)) {
         // Out of the world: stop simulating it before it can run out of range.
         world->bodies[bi].enabled = false;
@@ -264,6 +268,13 @@ void stage_finalize_bodies(World* world, StepContext* context) {
   for (int32_t k = 0; k < blocks; ++k) {
     if (left_bounds[k] != 0) context->flags |= k_step_flag_body_left_bounds;
   }
+  // Solver order is ascending body index, so the list is too.
+  std::vector<int32_t>& moved_bodies = world->events.moved_bodies;
+  moved_bodies.clear();
+  for (int32_t i = 0; i < count; ++i) {
+    if (moved[i] != 0) moved_bodies.push_back(context->solver_to_body[i]);
+  }
+  arena_free(arena, moved);
   arena_free(arena, left_bounds);
   arena_free(arena, context->params);
   arena_free(arena, context->states);
