@@ -31,10 +31,10 @@
 
 namespace tandem {
 
-int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t count,
-                                    int32_t (*out_cursor)[k_contact_colour_count + 2]) {
+ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count,
+                                          int32_t (*out_cursor)[k_contact_colour_count + 2]) {
   Arena* arena = &world->arena;
-  int32_t* colour_of = arena_allocate_array<int32_t>(arena, count, "constraint_colours");
+  ConstraintJob* jobs = arena_allocate_array_for_overwrite<ConstraintJob>(arena, count, "constraint_jobs");
   uint32_t* colour_masks = arena_allocate_array<uint32_t>(arena, context->solver_body_count, "colour_masks");
   for (int32_t i = 0; i < context->solver_body_count; ++i) colour_masks[i] = 0;
   int32_t* colour_start = *out_cursor;
@@ -61,7 +61,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
       if (ma) colour_masks[ia] |= uint32_t{1} << colour;
       if (mb) colour_masks[ib] |= uint32_t{1} << colour;
     }
-    colour_of[n++] = colour;
+    jobs[n++] = ConstraintJob{ci, ia, ib, colour};
     ++colour_start[colour + 1];
   });
   for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
@@ -71,7 +71,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
     if (colour_start[k + 1] > colour_start[k]) context->colour_count = k + 1;
   context->overflow_constraint_count = colour_start[k_contact_colour_count + 1] - colour_start[k_contact_colour_count];
   arena_free(arena, colour_masks);
-  return colour_of;
+  return jobs;
 }
 
 }  // namespace tandem
