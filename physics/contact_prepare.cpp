@@ -136,8 +136,15 @@ inline Q32 add(Q32 a, Q32 b) {
 inline Q32 sub(Q32 a, Q32 b) {
   return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)));
 }
+/// fast::round_shift_words(lo, hi) of p: bits 32…95 of p + h with
+/// h = 2^31 − [p < 0] < 2^32, formed as (p >> 32) + ((p mod 2^32 + h) >> 32)
+/// (the low 32 bits of p plus h carry at most 1 into bit 32), the same value
+/// modulo 2^64, which g++ compiles to shrd and three short 64-bit steps
+/// instead of a 128-bit add, two shifts and an or.
 inline Q32 round(fast::u128 p) {
-  return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(p), static_cast<uint64_t>(p >> 64)));
+  const uint64_t half = (uint64_t{1} << 31) - (static_cast<uint64_t>(p >> 64) >> 63);
+  const uint64_t carry = (static_cast<uint64_t>(static_cast<uint32_t>(p)) + half) >> 32;
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(p >> 32) + carry));
 }
 inline Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
 inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
