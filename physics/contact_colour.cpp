@@ -4,24 +4,28 @@
 // used by either of its movable bodies (a body with zero inverse mass and
 // inertia — kinematic — is never changed by the solver, so it constrains
 // nothing); constraints that find no free colour go to the overflow colour,
-// solved last. prepare_contact_constraints then stores the constraints
-// colour by colour, in contact order within a colour. Consecutive
-// constraints of one colour touch disjoint bodies, so the scalar loops carry
-// no memory dependency from one to the next and a wide solver can take a
-// colour in lanes.
+// solved last. The pass hands prepare_contact_constraints each constraint's
+// contact, solver indices and colour (ConstraintJob, in contact order), which
+// then stores the constraints colour by colour, in contact order within a
+// colour, without walking the awake index again. Consecutive constraints of
+// one colour touch disjoint bodies, so the scalar loops carry no memory
+// dependency from one to the next and a wide solver can take a colour in
+// lanes.
 //
 // Cost: one pass over the contacts with a 32-bit colour mask per solver body:
-// ~51 instructions per constraint on x86-64 (pyramid-100, callgrind), 4.5 %
-// of the preparation's ~1,130 (docs/benchmarks.md).
+// ~67 instructions per constraint on x86-64, the job record included
+// (pyramid-100, callgrind), 7 % of the preparation's ~970
+// (docs/benchmarks.md).
 //
 // Rejected (for now): incremental colouring (a persistent contact keeps last
 // step's colour, as Box2D v3's constraint graph does). The colour decides the
 // solve order and so the results; a colour carried from the previous step
 // would be state that snapshots, rollback and replays must carry too (or
 // rebuild exactly, which is this pass), and the most it could save is the
-// pass's ~51 instructions per constraint, while checking which contacts kept
-// their bodies and neighbours costs a good part of that. The pass stays a
-// pure function of this step's contact list.
+// pass's ~55 instructions per constraint (the job record is needed anyway),
+// while checking which contacts kept their bodies and neighbours costs a
+// good part of that. The pass stays a pure function of this step's contact
+// list.
 #include "physics/contact_colour.h"
 
 #include <bit>

@@ -6,6 +6,21 @@
 // argument ("PER STEP", "Range of the preparation") is in contact_solver.cpp's
 // opening comment and docs/determinism.md, "Range of the contact
 // preparation". Split out of contact_solver.cpp (code moved, not changed).
+//
+// Cost (issue 20): ~970 instructions per touching contact on pyramid-100
+// (x86-64 g++, callgrind; docs/benchmarks.md), of which ~320 per point (a
+// box contact has two) go to its 17 rounded 128-bit products, 2 reciprocals
+// and 22 stores. What the
+// per-contact part avoids: reading four per-body arrays (SolverBodyParams,
+// BodyState, BodySim, Body) per side and contact — a PrepBody record per
+// solver body is gathered at the body's first constraint of the step —
+// and walking the awake index a third time: the colouring pass hands over
+// each constraint's contact and solver indices (ConstraintJob).
+// Rejected: gathering every solver body's record up front (a scene of many
+// bodies and few contacts, circles-16k: 16,000 bodies, 875 contacts, would
+// pay for all of them); dropping the counting pass (the constraint array,
+// allocated before the colouring's arena arrays and outliving them, needs
+// the count first; the pass costs ~10 instructions per contact).
 #include <bit>
 
 #include "physics/contact_colour.h"
@@ -109,8 +124,8 @@ inline void cap_mass_ratio(Q32* inv_mass_light, Q32* inv_inertia_light, Q32 inv_
 // is far inside the Q32.32 range in every state the API and restore accept
 // (the argument below), so the checked operators would neither saturate nor
 // report a fault there, and the exact result wrapped through unsigned (add,
-// sub) or rounded by fast::round_shift_words alone (to nearest, ties away
-// from zero; no saturation test) is their result, bit for bit. Debug and
+// sub) or rounded to the value fast::round_shift_words gives (to nearest,
+// ties away from zero; no saturation test) is their result, bit for bit. Debug and
 // sanitizer builds (and targets without __int128) use the checked operators
 // instead, which would report a fault — and give other bits, caught by the
 // golden chains of those builds — should the argument ever fail.
@@ -282,7 +297,8 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   // (PrepBody), gathered at the body's first constraint of the step
   // (k_prep_body_unset until then: a scene of many bodies and few contacts
   // pays nothing for the others).
-  PrepBody* prep_bodies = arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
+  PrepBody* prep_bodies =
+      arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
   for (int32_t i = 0; i < context->solver_body_count; ++i) {
     context->bounce_marks[i] = -1;
     prep_bodies[i].has_box = k_prep_body_unset;
