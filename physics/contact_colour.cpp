@@ -4,24 +4,28 @@
 // used by either of its movable bodies (a body with zero inverse mass and
 // inertia — kinematic — is never changed by the solver, so it constrains
 // nothing); constraints that find no free colour go to the overflow colour,
-// solved last. prepare_contact_constraints then stores the constraints
-// colour by colour, in contact order within a colour. Consecutive
-// constraints of one colour touch disjoint bodies, so the scalar loops carry
-// no memory dependency from one to the next and a wide solver can take a
-// colour in lanes.
+// solved last. The pass hands prepare_contact_constraints each constraint's
+// contact, solver indices and colour (ConstraintJob, in contact order), which
+// then stores the constraints colour by colour, in contact order within a
+// colour, without walking the awake index again. Consecutive constraints of
+// one colour touch disjoint bodies, so the scalar loops carry no memory
+// dependency from one to the next and a wide solver can take a colour in
+// lanes.
 //
 // Cost: one pass over the contacts with a 32-bit colour mask per solver body:
-// ~51 instructions per constraint on x86-64 (pyramid-100, callgrind), 4.5 %
-// of the preparation's ~1,130 (docs/benchmarks.md).
+// ~67 instructions per constraint on x86-64, the job record included
+// (pyramid-100, callgrind), 7 % of the preparation's ~970
+// (docs/benchmarks.md).
 //
 // Rejected (for now): incremental colouring (a persistent contact keeps last
 // step's colour, as Box2D v3's constraint graph does). The colour decides the
 // solve order and so the results; a colour carried from the previous step
 // would be state that snapshots, rollback and replays must carry too (or
 // rebuild exactly, which is this pass), and the most it could save is the
-// pass's ~51 instructions per constraint, while checking which contacts kept
-// their bodies and neighbours costs a good part of that. The pass stays a
-// pure function of this step's contact list.
+// pass's ~55 instructions per constraint (the job record is needed anyway),
+// while checking which contacts kept their bodies and neighbours costs a
+// good part of that. The pass stays a pure function of this step's contact
+// list.
 #include "physics/contact_colour.h"
 
 #include <bit>
@@ -31,10 +35,10 @@
 
 namespace tandem {
 
-int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t count,
-                                    int32_t (*out_cursor)[k_contact_colour_count + 2]) {
+ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count,
+                                          int32_t (*out_cursor)[k_contact_colour_count + 2]) {
   Arena* arena = &world->arena;
-  int32_t* colour_of = arena_allocate_array<int32_t>(arena, count, "constraint_colours");
+  ConstraintJob* jobs = arena_allocate_array_for_overwrite<ConstraintJob>(arena, count, "constraint_jobs");
   uint32_t* colour_masks = arena_allocate_array<uint32_t>(arena, context->solver_body_count, "colour_masks");
   for (int32_t i = 0; i < context->solver_body_count; ++i) colour_masks[i] = 0;
   int32_t* colour_start = *out_cursor;
@@ -61,7 +65,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
       if (ma) colour_masks[ia] |= uint32_t{1} << colour;
       if (mb) colour_masks[ib] |= uint32_t{1} << colour;
     }
-    colour_of[n++] = colour;
+    jobs[n++] = ConstraintJob{ci, ia, ib, colour};
     ++colour_start[colour + 1];
   });
   for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
@@ -71,7 +75,7 @@ int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t 
     if (colour_start[k + 1] > colour_start[k]) context->colour_count = k + 1;
   context->overflow_constraint_count = colour_start[k_contact_colour_count + 1] - colour_start[k_contact_colour_count];
   arena_free(arena, colour_masks);
-  return colour_of;
+  return jobs;
 }
 
 }  // namespace tandem

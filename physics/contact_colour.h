@@ -18,14 +18,25 @@ namespace tandem {
 struct World;
 struct StepContext;
 
+/// One constraint prepare_contact_constraints builds, as the colouring pass
+/// found it: the contact and its bodies' solver indices (so the preparation
+/// does not read the contact's flags and body_to_solver a second time) and
+/// its colour.
+struct ConstraintJob {
+  int32_t contact;   ///< into World::contacts
+  int32_t solver_a;  ///< solver index of body A, or k_null_index
+  int32_t solver_b;  ///< solver index of body B, or k_null_index
+  int32_t colour;    ///< 0 … k_contact_colour_count (the last: the overflow colour)
+};
+
 /// Colours the `count` constraints prepare_contact_constraints will build
 /// (touching contacts with at least one simulated body, in contact order):
-/// returns an arena array (`count` entries, colour 0 … k_contact_colour_count,
-/// the last being the overflow colour) that the caller frees, and writes
-/// context->colour_offsets, colour_count and overflow_constraint_count.
-/// *out_cursor[k] receives the first constraint slot of colour k (the caller
-/// advances it while storing constraints colour by colour).
-int32_t* colour_contact_constraints(World* world, StepContext* context, int32_t count,
-                                    int32_t (*out_cursor)[k_contact_colour_count + 2]);
+/// returns an arena array of their `count` jobs, in contact order, that the
+/// caller frees, and writes context->colour_offsets, colour_count and
+/// overflow_constraint_count. *out_cursor[k] receives the first constraint
+/// slot of colour k (the caller advances it while storing constraints colour
+/// by colour).
+ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count,
+                                          int32_t (*out_cursor)[k_contact_colour_count + 2]);
 
 }  // namespace tandem

@@ -6,6 +6,21 @@
 // argument ("PER STEP", "Range of the preparation") is in contact_solver.cpp's
 // opening comment and docs/determinism.md, "Range of the contact
 // preparation". Split out of contact_solver.cpp (code moved, not changed).
+//
+// Cost (issue 20): ~970 instructions per touching contact on pyramid-100
+// (x86-64 g++, callgrind; docs/benchmarks.md), of which ~320 per point (a
+// box contact has two) go to its 17 rounded 128-bit products, 2 reciprocals
+// and 22 stores. What the
+// per-contact part avoids: reading four per-body arrays (SolverBodyParams,
+// BodyState, BodySim, Body) per side and contact — a PrepBody record per
+// solver body is gathered at the body's first constraint of the step —
+// and walking the awake index a third time: the colouring pass hands over
+// each constraint's contact and solver indices (ConstraintJob).
+// Rejected: gathering every solver body's record up front (a scene of many
+// bodies and few contacts, circles-16k: 16,000 bodies, 875 contacts, would
+// pay for all of them); dropping the counting pass (the constraint array,
+// allocated before the colouring's arena arrays and outliving them, needs
+// the count first; the pass costs ~10 instructions per contact).
 #include <bit>
 
 #include "physics/contact_colour.h"
@@ -109,8 +124,8 @@ inline void cap_mass_ratio(Q32* inv_mass_light, Q32* inv_inertia_light, Q32 inv_
 // is far inside the Q32.32 range in every state the API and restore accept
 // (the argument below), so the checked operators would neither saturate nor
 // report a fault there, and the exact result wrapped through unsigned (add,
-// sub) or rounded by fast::round_shift_words alone (to nearest, ties away
-// from zero; no saturation test) is their result, bit for bit. Debug and
+// sub) or rounded to the value fast::round_shift_words gives (to nearest,
+// ties away from zero; no saturation test) is their result, bit for bit. Debug and
 // sanitizer builds (and targets without __int128) use the checked operators
 // instead, which would report a fault — and give other bits, caught by the
 // golden chains of those builds — should the argument ever fail.
@@ -136,18 +151,34 @@ inline Q32 add(Q32 a, Q32 b) {
 inline Q32 sub(Q32 a, Q32 b) {
   return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(a.raw) - static_cast<uint64_t>(b.raw)));
 }
+/// fast::round_shift_words(lo, hi) of p: bits 32…95 of p + h with
+/// h = 2^31 − [p < 0] < 2^32, formed as (p >> 32) + ((p mod 2^32 + h) >> 32)
+/// (the low 32 bits of p plus h carry at most 1 into bit 32), the same value
+/// modulo 2^64, which g++ compiles to shrd and three short 64-bit steps
+/// instead of a 128-bit add, two shifts and an or.
 inline Q32 round(fast::u128 p) {
-  return Q32::from_raw(fast::round_shift_words(static_cast<uint64_t>(p), static_cast<uint64_t>(p >> 64)));
+  const uint64_t half = (uint64_t{1} << 31) - (static_cast<uint64_t>(p >> 64) >> 63);
+  const uint64_t carry = (static_cast<uint64_t>(static_cast<uint32_t>(p)) + half) >> 32;
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(p >> 32) + carry));
 }
 inline Q32 mul(Q32 a, Q32 b) { return round(fast::product(a.raw, b.raw)); }
 inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) + fast::product(c.raw, d.raw)); }
 inline Q32 diff2(Q32 a, Q32 b, Q32 c, Q32 d) { return round(fast::product(a.raw, b.raw) - fast::product(c.raw, d.raw)); }
+/// mul(a, b) for a·b ≥ 0 (the caller's sign argument): the exact product is
+/// then below 2^126 and non-negative, its high word's sign bit is clear, and
+/// round_shift_words' half is the constant 2^31: the same bits, two
+/// instructions fewer.
+inline Q32 mul_nonneg(Q32 a, Q32 b) {
+  const fast::u128 p = fast::product(a.raw, b.raw) + (fast::u128{1} << 31);
+  return Q32::from_raw(static_cast<int64_t>(static_cast<uint64_t>(p >> 32)));
+}
 #else
 inline Q32 add(Q32 a, Q32 b) { return fast::add(a, b); }
 inline Q32 sub(Q32 a, Q32 b) { return fast::sub(a, b); }
 inline Q32 mul(Q32 a, Q32 b) { return fast::mul(a, b); }
 inline Q32 sum2(Q32 a, Q32 b, Q32 c, Q32 d) { return fast::sum2(a, b, c, d); }
 inline Q32 diff2(Q32 a, Q32 b, Q32 c, Q32 d) { return fast::diff2(a, b, c, d); }
+inline Q32 mul_nonneg(Q32 a, Q32 b) { return fast::mul(a, b); }
 #endif
 inline Vec2 sub(Vec2 a, Vec2 b) { return {sub(a.x, b.x), sub(a.y, b.y)}; }
 /// fast::cross(a, b).
@@ -156,16 +187,67 @@ inline Q32 cross(Vec2 a, Vec2 b) { return diff2(a.x, b.y, a.y, b.x); }
 inline Vec2 inv_rotate(Rot q, Vec2 v) { return {sum2(q.c, v.x, q.s, v.y), diff2(q.c, v.y, q.s, v.x)}; }
 }  // namespace unsat
 
-/// contact_reach_box not yet computed for a body (3: never a result).
-constexpr uint64_t k_reach_box_unset = 3;
+/// What the preparation reads of one side of a contact constraint, gathered
+/// once per solver body and step (at the body's first constraint) instead of
+/// from four arrays per contact (SolverBodyParams, BodyState, BodySim, Body).
+/// A side that is not simulated gets a record built on the spot
+/// (static_side): no mass, the identity rotation, its own centre offset.
+struct PrepBody {
+  Q32 inv_mass;         ///< SolverBodyParams::inv_mass, 1/kg (0: not simulated)
+  Q32 inv_inertia;      ///< SolverBodyParams::inv_inertia, 1/(kg·m²) (0: not simulated)
+  Rot rotation;         ///< BodyState::rotation (identity: not simulated)
+  Vec2 com_offset;      ///< centre of mass − origin (BodySim center − transform.p), m
+  Vec2 delta_velocity;  ///< SolverBodyParams::delta_linear_velocity, m/s (0: not simulated)
+  /// The reach box (contact_reach_box, c raw) as an interval test: an anchor
+  /// r is inside when has_box and r.x + box_offset, r.y + box_offset (raw,
+  /// unsigned, wrapping) are both ≤ box_limit. c in 1 … 2^46: offset c − 1,
+  /// limit 2c − 2 (−c < x < c ⇔ 0 ≤ x + c − 1 ≤ 2c − 2, and x + c − 1
+  /// wraps to ≥ 2^64 − 2^46 for x ≤ −c, x + c − 1 ≥ 2c − 1 for x ≥ c, as
+  /// every raw x is below 2^63 in magnitude); c all ones (any anchor):
+  /// offset 0, limit all ones; c = 0 (none): has_box 0.
+  uint64_t box_offset;
+  uint64_t box_limit;
+  int32_t has_box;  ///< 1, 0 (c = 0), or k_prep_body_unset (not yet gathered)
+};
 
-/// |v.x| < c and |v.y| < c (raw; c = 0: none, 1 ≤ c ≤ 2^46, or all ones: any):
-/// −c < x < c ⇔ x + c − 1 < 2c − 1 as unsigned.
-inline bool inside_reach_box(Vec2 v, uint64_t c) {
-  if (c == ~uint64_t{0}) return true;
-  if (c == 0) return false;  // (2c − 1 would wrap)
-  const uint64_t span = 2 * c - 1;
-  return (static_cast<uint64_t>(v.x.raw) + (c - 1) < span) & (static_cast<uint64_t>(v.y.raw) + (c - 1) < span);
+/// PrepBody::has_box of a record not yet gathered this step.
+constexpr int32_t k_prep_body_unset = -1;
+
+/// Gathers solver body `solver_index`'s record (see PrepBody).
+inline void gather_prep_body(const World& world, const StepContext& context, int32_t solver_index, PrepBody* out) {
+  const int32_t body_index = context.solver_to_body[solver_index];
+  const SolverBodyParams& p = context.params[solver_index];
+  const BodySim& sim = world.body_sims[static_cast<size_t>(body_index)];
+  out->inv_mass = p.inv_mass;
+  out->inv_inertia = p.inv_inertia;
+  out->rotation = context.states[solver_index].rotation;
+  out->com_offset = unsat::sub(sim.center, sim.transform.p);
+  out->delta_velocity = p.delta_linear_velocity;
+  const uint64_t c = contact_reach_box(p.inv_inertia, world.bodies[static_cast<size_t>(body_index)].max_extent);
+  out->has_box = c != 0 ? 1 : 0;
+  out->box_offset = c == ~uint64_t{0} ? 0 : c - 1;
+  out->box_limit = c == ~uint64_t{0} ? ~uint64_t{0} : 2 * c - 2;
+}
+
+/// The record of a side that is not simulated (I⁻¹ = 0 there, so any anchor
+/// is inside its box).
+inline PrepBody static_side(const BodySim& sim) {
+  PrepBody r;
+  r.inv_mass = Q32::zero();
+  r.inv_inertia = Q32::zero();
+  r.rotation = Rot{};
+  r.com_offset = unsat::sub(sim.center, sim.transform.p);
+  r.delta_velocity = Vec2{};
+  r.box_offset = 0;
+  r.box_limit = ~uint64_t{0};
+  r.has_box = 1;
+  return r;
+}
+
+/// Whether anchor v lies inside side b's reach box (PrepBody's interval test).
+inline bool inside_reach_box(Vec2 v, const PrepBody& b) {
+  return (static_cast<uint64_t>(v.x.raw) + b.box_offset <= b.box_limit) &
+         (static_cast<uint64_t>(v.y.raw) + b.box_offset <= b.box_limit);
 }
 
 }  // namespace
@@ -211,40 +293,49 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->constraints = arena_allocate_array_for_overwrite<ContactConstraint>(arena, count, "contact_constraints");
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
   context->constraint_count = count;
-  // Per solver body: the anchor box inside which contact_inv_inertia keeps
-  // I⁻¹ (contact_reach_box), computed at a body's first constraint of the
-  // step (k_reach_box_unset until then: a scene of many bodies and few
-  // contacts pays nothing for the others).
-  uint64_t* reach_box = arena_allocate_array<uint64_t>(arena, context->solver_body_count, "contact_reach_box");
+  // Per solver body: the record of what the preparation reads of it
+  // (PrepBody), gathered at the body's first constraint of the step
+  // (k_prep_body_unset until then: a scene of many bodies and few contacts
+  // pays nothing for the others).
+  PrepBody* prep_bodies =
+      arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
   for (int32_t i = 0; i < context->solver_body_count; ++i) {
     context->bounce_marks[i] = -1;
-    reach_box[i] = k_reach_box_unset;
+    prep_bodies[i].has_box = k_prep_body_unset;
   }
-  const auto body_reach_box = [world, context, reach_box](int32_t solver_index) {
-    if (solver_index < 0) return ~uint64_t{0};  // not simulated: I⁻¹ = 0 here
-    uint64_t& box = reach_box[solver_index];
-    if (box == k_reach_box_unset) {
-      const Body& body = world->bodies[static_cast<size_t>(context->solver_to_body[solver_index])];
-      box = contact_reach_box(context->params[solver_index].inv_inertia, body.max_extent);
-    }
-    return box;
+  const auto prep_body = [world, context, prep_bodies](int32_t solver_index) -> const PrepBody& {
+    PrepBody& b = prep_bodies[solver_index];
+    if (b.has_box == k_prep_body_unset) gather_prep_body(*world, *context, solver_index, &b);
+    return b;
   };
 
   // Graph colours (contact_colour.cpp): constraints are stored colour by
-  // colour, in contact order within a colour.
+  // colour, in contact order within a colour. The colouring pass hands over
+  // the constraints' contacts and solver indices (jobs, in contact order).
   int32_t colour_start[k_contact_colour_count + 2];
-  int32_t* colour_of = colour_contact_constraints(world, context, count, &colour_start);
+  const ConstraintJob* jobs = colour_contact_constraints(world, context, count, &colour_start);
+  world->contacts_read_after_update += count;
 
-  int32_t n = 0;
-  for_each_awake_contact(*world, [&](int32_t ci) {
+  PrepBody static_a, static_b;  // a side that is not simulated
+  for (int32_t n = 0; n < count; ++n) {
+    const ConstraintJob job = jobs[n];
+    const int32_t ci = job.contact, ia = job.solver_a, ib = job.solver_b;
     const Contact& c = contacts[static_cast<size_t>(ci)];
-    if ((c.flags & k_contact_touching) == 0) return;
-    const int32_t ia = context->body_to_solver[static_cast<size_t>(c.body_a)];
-    const int32_t ib = context->body_to_solver[static_cast<size_t>(c.body_b)];
-    if (ia == k_null_index && ib == k_null_index) return;
-    const BodySim& sim_a = world->body_sims[static_cast<size_t>(c.body_a)];
-    const BodySim& sim_b = world->body_sims[static_cast<size_t>(c.body_b)];
-    ContactConstraint& cc = context->constraints[colour_start[colour_of[n++]]++];
+    const PrepBody* side_a;
+    const PrepBody* side_b;
+    if (ia >= 0) {
+      side_a = &prep_body(ia);
+    } else {
+      static_a = static_side(world->body_sims[static_cast<size_t>(c.body_a)]);
+      side_a = &static_a;
+    }
+    if (ib >= 0) {
+      side_b = &prep_body(ib);
+    } else {
+      static_b = static_side(world->body_sims[static_cast<size_t>(c.body_b)]);
+      side_b = &static_b;
+    }
+    ContactConstraint& cc = context->constraints[colour_start[job.colour]++];
     // Every field is written below (the array is unwritten storage,
     // arena_allocate_array_for_overwrite): the header here, each used point in the loop, an
     // unused second point zeroed as a whole. A field added to either struct
@@ -254,29 +345,20 @@ void prepare_contact_constraints(World* world, StepContext* context) {
                   "prepare_contact_constraints writes every field of ContactConstraint: add the new field there");
     cc.solver_a = ia;
     cc.solver_b = ib;
-    cc.contact_index = static_cast<int32_t>(ci);
+    cc.contact_index = ci;
     cc.point_count = c.manifold.point_count;
     cc.normal = c.manifold.normal;
     cc.friction = c.friction;
     cc.restitution = c.restitution;
-    Vec2 dv_a{}, dv_b{};
-    cc.inv_mass_a = Q32::zero();
-    cc.inv_inertia_a = Q32::zero();
-    cc.inv_mass_b = Q32::zero();
-    cc.inv_inertia_b = Q32::zero();
-    if (ia >= 0) {
-      const SolverBodyParams& p = context->params[ia];
-      cc.inv_mass_a = p.inv_mass;
-      cc.inv_inertia_a = p.inv_inertia;
-      dv_a = p.delta_linear_velocity;
-    }
-    if (ib >= 0) {
-      const SolverBodyParams& p = context->params[ib];
-      cc.inv_mass_b = p.inv_mass;
-      cc.inv_inertia_b = p.inv_inertia;
-      dv_b = p.delta_linear_velocity;
-    }
-    cc.kick = fast::dot(fast::sub(dv_b, dv_a), cc.normal);
+    cc.inv_mass_a = side_a->inv_mass;
+    cc.inv_inertia_a = side_a->inv_inertia;
+    cc.inv_mass_b = side_b->inv_mass;
+    cc.inv_inertia_b = side_b->inv_inertia;
+    // Equal velocity changes (both bodies under gravity alone, the common
+    // case) give fast::sub = 0 exactly and a dot product of 0: the same bits
+    // without the checked arithmetic.
+    const Vec2 dv_a = side_a->delta_velocity, dv_b = side_b->delta_velocity;
+    cc.kick = dv_a.x == dv_b.x && dv_a.y == dv_b.y ? Q32::zero() : fast::dot(fast::sub(dv_b, dv_a), cc.normal);
     // The mass-ratio cap, for resting contacts only: both sides dynamic
     // (then both are simulated), one over R times lighter, and the centres
     // closing or parting slower than the restitution threshold along the
@@ -303,27 +385,25 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     const bool rigid_side = cc.inv_mass_a == Q32::zero() || cc.inv_mass_b == Q32::zero();
     cc.softness = rigid_side ? context->static_softness : context->contact_softness;
 
-    const Rot rotation_a = ia >= 0 ? context->states[ia].rotation : Rot{};
-    const Rot rotation_b = ib >= 0 ? context->states[ib].rotation : Rot{};
+    const Rot rotation_a = side_a->rotation;
+    const Rot rotation_b = side_b->rotation;
     const Vec2 n_vec = cc.normal;
     const Vec2 t_vec = right_perp(n_vec);
-    const Vec2 com_offset_a = unsat::sub(sim_a.center, sim_a.transform.p);
-    const Vec2 com_offset_b = unsat::sub(sim_b.center, sim_b.transform.p);
+    const Vec2 com_offset_a = side_a->com_offset;
+    const Vec2 com_offset_b = side_b->com_offset;
     const Q32 inv_mass_sum = unsat::add(cc.inv_mass_a, cc.inv_mass_b);
     // Geometry (anchors, crosses) and the mass terms use the unsaturated
     // helpers above (their range argument: same bits as the checked
     // operators); the inverse inertia is first bounded by
     // contact_inv_inertia ("Range of the preparation" in contact_solver.cpp).
     Vec2 anchors_a[2], anchors_b[2];
-    bool inside_a = true, inside_b = true;
-    const uint64_t box_a = body_reach_box(ia);
-    const uint64_t box_b = body_reach_box(ib);
+    bool inside_a = side_a->has_box != 0, inside_b = side_b->has_box != 0;
     for (int32_t j = 0; j < cc.point_count; ++j) {
       const ManifoldPoint& mp = c.manifold.points[static_cast<size_t>(j)];
       anchors_a[j] = unsat::sub(mp.anchor_a, com_offset_a);
       anchors_b[j] = unsat::sub(mp.anchor_b, com_offset_b);
-      inside_a = inside_a && inside_reach_box(anchors_a[j], box_a);
-      inside_b = inside_b && inside_reach_box(anchors_b[j], box_b);
+      inside_a = inside_a & inside_reach_box(anchors_a[j], *side_a);
+      inside_b = inside_b & inside_reach_box(anchors_b[j], *side_b);
     }
     // Outside the box: the full bound (reach² from max_extent and the
     // anchors; the same values contact_reach_box's shortcut stands for).
@@ -342,8 +422,10 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       ContactConstraintPoint& cp = cc.points[j];
       const Vec2 anchor_a = anchors_a[j];
       const Vec2 anchor_b = anchors_b[j];
-      cp.local_a = ia >= 0 ? unsat::inv_rotate(rotation_a, anchor_a) : fast::add(sim_a.center, anchor_a);
-      cp.local_b = ib >= 0 ? unsat::inv_rotate(rotation_b, anchor_b) : fast::add(sim_b.center, anchor_b);
+      cp.local_a = ia >= 0 ? unsat::inv_rotate(rotation_a, anchor_a)
+                           : fast::add(world->body_sims[static_cast<size_t>(c.body_a)].center, anchor_a);
+      cp.local_b = ib >= 0 ? unsat::inv_rotate(rotation_b, anchor_b)
+                           : fast::add(world->body_sims[static_cast<size_t>(c.body_b)].center, anchor_b);
       // The solver's current separation is (c_B + R_B·l_B − c_A − R_A·l_A)·n
       // plus this. At the start of the step the anchors close exactly
       // (anchor_b = anchor_a + p_A − p_B, collision.h), so the gap is only
@@ -357,12 +439,19 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.angular_n_b = unsat::mul(cc.inv_inertia_b, rn_b);
       cp.angular_t_a = unsat::mul(cc.inv_inertia_a, rt_a);
       cp.angular_t_b = unsat::mul(cc.inv_inertia_b, rt_b);
-      const Q32 k_normal =
-          unsat::add(unsat::add(inv_mass_sum, unsat::mul(cp.angular_n_a, rn_a)), unsat::mul(cp.angular_n_b, rn_b));
+      // The products below are ≥ 0 (unsat::mul_nonneg): I⁻¹ ≥ 0 (body.cpp's
+      // mass data, checked again on restore; the caps scale it by factors
+      // in (0, 1] or replace it by K/reach² > 0), and round(I⁻¹·r) has r's
+      // sign or is 0 (rounding is monotonic and keeps 0), so
+      // round(I⁻¹·r)·r ≥ 0; normal_mass ≥ 0 (1/k for k > 0, else 0) and
+      // mass_scale = a2·a3 ≥ 0 (hertz > 0, damping ratio ≥ 0, h > 0: the
+      // world's checks).
+      const Q32 k_normal = unsat::add(unsat::add(inv_mass_sum, unsat::mul_nonneg(cp.angular_n_a, rn_a)),
+                                      unsat::mul_nonneg(cp.angular_n_b, rn_b));
       cp.normal_mass = k_normal > Q32::zero() ? fast::reciprocal(k_normal) : Q32::zero();
-      cp.soft_normal_mass = unsat::mul(cp.normal_mass, cc.softness.mass_scale);
-      const Q32 k_tangent =
-          unsat::add(unsat::add(inv_mass_sum, unsat::mul(cp.angular_t_a, rt_a)), unsat::mul(cp.angular_t_b, rt_b));
+      cp.soft_normal_mass = unsat::mul_nonneg(cp.normal_mass, cc.softness.mass_scale);
+      const Q32 k_tangent = unsat::add(unsat::add(inv_mass_sum, unsat::mul_nonneg(cp.angular_t_a, rt_a)),
+                                       unsat::mul_nonneg(cp.angular_t_b, rt_b));
       cp.tangent_mass = k_tangent > Q32::zero() ? fast::reciprocal(k_tangent) : Q32::zero();
       cp.rn_a = rn_a;
       cp.rn_b = rn_b;
@@ -377,9 +466,9 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
     }
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
-  });
-  arena_free(arena, colour_of);
-  arena_free(arena, reach_box);
+  }
+  arena_free(arena, const_cast<ConstraintJob*>(jobs));
+  arena_free(arena, prep_bodies);
   pack_contact_lanes(world, context);
 }
 
