@@ -59,7 +59,8 @@ bool fast_check_bodies(const uint8_t* data, size_t size, size_t* io_pos, const u
     b |= outside(ld_raw(p + 8), k_max_coordinate);
     const int64_t c = ld_raw(p + 16);
     const int64_t s = ld_raw(p + 24);
-    const bool rot_out = outside(c, k_unit_lim) | outside(s, k_unit_lim);
+    bool rot_out = outside(c, k_unit_lim);
+    rot_out |= outside(s, k_unit_lim);
     b |= rot_out;
     {
       // The detailed checker's unit test (c·c + s·s, each product rounded,
@@ -185,7 +186,8 @@ bool fast_check_contacts(const uint8_t* data, size_t size, size_t* io_pos, const
       }
       for (int32_t k = 0; k < count; ++k) {
         const size_t kk = static_cast<size_t>(k);
-        bad |= outside(c.normal_impulse[kk].raw, k_max_impulse) | outside(c.tangent_impulse[kk].raw, k_max_impulse);
+        bad |= outside(c.normal_impulse[kk].raw, k_max_impulse);
+        bad |= outside(c.tangent_impulse[kk].raw, k_max_impulse);
       }
       pos = r.pos;
       continue;
@@ -195,7 +197,8 @@ bool fast_check_contacts(const uint8_t* data, size_t size, size_t* io_pos, const
     if (bytes > size - pos) return false;
     const uint8_t* p = data + pos;
     for (int32_t k = 0; k < count; ++k, p += k_compact_point_bytes) {
-      bad |= outside(ld_raw(p + 2), k_max_impulse) | outside(ld_raw(p + 10), k_max_impulse);
+      bad |= outside(ld_raw(p + 2), k_max_impulse);
+      bad |= outside(ld_raw(p + 10), k_max_impulse);
     }
     pos += bytes;
   }
