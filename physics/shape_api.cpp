@@ -296,8 +296,54 @@ namespace {
 /// faults), through fast_math.h. Range: a shape's points lie within
 /// k_max_shape_size (10^4 m) of its body's origin and xf's rotation is a unit
 /// vector, so a rotated coordinate is below 1.5·10^4 m and adding a position
-/// within the world's range (≤ 2·10^6 m) cannot saturate.
+/// within the world's range (≤ 2·10^6 m) cannot saturate. Where fast_math.h
+/// is unchecked (release builds with __int128), the position is added once,
+/// to the extremes of the rotated points: the saturating add is monotone, so
+/// min_i(a_i + p) = min_i(a_i) + p bit for bit, saturated or not
+/// (transform_point(xf, v) is rotate(xf.q, v) + xf.p); builds that report
+/// faults add it to every point, so a crafted geometry reports as before.
+#if TANDEM_FAST_MATH_UNCHECKED
+/// Whether the points are make_box's: (−a, −b), (a, −b), (a, b), (−a, b), in
+/// that order, with a, b ≠ INT64_MIN (so every product below is below 2^126).
+bool is_centred_box(const Vec2* v, int32_t count) {
+  if (count != 4) return false;
+  const int64_t a = v[1].x.raw;
+  const int64_t b = v[2].y.raw;
+  return a != INT64_MIN && b != INT64_MIN && v[0].x.raw == -a && v[0].y.raw == -b && v[1].y.raw == -b &&
+         v[2].x.raw == a && v[3].x.raw == -a && v[3].y.raw == b;
+}
+
+fast::s128 abs128(fast::s128 x) { return x < 0 ? -x : x; }
+#endif
+
 AABB transformed_bounds(const Vec2* points, int32_t count, Q32 r, Transform xf) {
+#if TANDEM_FAST_MATH_UNCHECKED
+  Vec2 lo, hi;
+  if (is_centred_box(points, count)) {
+    // The box's rotated coordinates, exact before rounding, are
+    // x = ±c·a ± s·b and y = ±s·a ± c·b, all four sign pairs each (one per
+    // corner). Their least and greatest are ∓(|c·a| + |s·b|) and
+    // ∓(|s·a| + |c·b|), and rounding is monotone, so rounding those gives the
+    // least and greatest of the rounded corners: the loop's bits, from 4
+    // products instead of 16.
+    const int64_t a = points[1].x.raw;
+    const int64_t b = points[2].y.raw;
+    const fast::s128 tx = abs128(fast::s128{xf.q.c.raw} * a) + abs128(fast::s128{xf.q.s.raw} * b);
+    const fast::s128 ty = abs128(fast::s128{xf.q.s.raw} * a) + abs128(fast::s128{xf.q.c.raw} * b);
+    lo = {fast::round_shift(static_cast<fast::u128>(-tx)), fast::round_shift(static_cast<fast::u128>(-ty))};
+    hi = {fast::round_shift(static_cast<fast::u128>(tx)), fast::round_shift(static_cast<fast::u128>(ty))};
+  } else {
+    lo = fast::rotate(xf.q, points[0]);
+    hi = lo;
+    for (int32_t i = 1; i < count; ++i) {
+      const Vec2 v = fast::rotate(xf.q, points[i]);
+      lo = min(lo, v);
+      hi = max(hi, v);
+    }
+  }
+  lo = fast::add(lo, xf.p);
+  hi = fast::add(hi, xf.p);
+#else
   Vec2 lo = fast::transform_point(xf, points[0]);
   Vec2 hi = lo;
   for (int32_t i = 1; i < count; ++i) {
@@ -305,6 +351,7 @@ AABB transformed_bounds(const Vec2* points, int32_t count, Q32 r, Transform xf) 
     lo = min(lo, v);
     hi = max(hi, v);
   }
+#endif
   const Vec2 rr{r, r};
   return {fast::sub(lo, rr), fast::add(hi, rr)};
 }

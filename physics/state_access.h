@@ -232,6 +232,10 @@ size_t write_compact_records(WorldState& world, uint8_t* out, CompactStructure s
 /// from the start of `image`) on the first failure.
 bool check_compact_records(const uint8_t* image, size_t size, size_t from, CompactStructureView structure,
                            std::string* error);
+/// Whether check_compact_records tries its fast checks first (the default):
+/// off, every image goes through the detailed checks alone. Both give the same
+/// verdict and message for every image; tests compare them.
+void set_compact_fast_checks(bool on);
 /// Replaces the world's state with checked compact records and rebuilds what
 /// is derived from them (as commit_image); cannot fail.
 void apply_compact_records(WorldState& world, const uint8_t* image, size_t size, size_t from,

@@ -10,11 +10,12 @@
 // grows, so a new field is placed here as well as in state_fields.h.
 //
 // DESIGN. Save writes the image with explicit little-endian stores into a
-// buffer sized once for an upper bound (no ByteWriter bookkeeping per field;
-// each store is one move on x86-64), then trims it. Restore runs the same
-// decoder twice over the image: the first pass (Apply = false) reads through
-// a bounds-checked ByteReader and checks every structure, index and range
-// without touching the world, the second (Apply = true) writes the world and
+// buffer sized for an upper bound (no ByteWriter bookkeeping per field; each
+// store is one move on x86-64; replay/rollback.cpp keeps that buffer and
+// copies the bytes written into the image). Restore runs the same
+// decoder twice over the image (state_compact_restore.cpp): the first pass
+// checks every structure, index and range
+// without touching the world, the second writes the world and
 // cannot fail, so a refused image changes nothing and an accepted one needs
 // no scratch copy of the world (the portable restore decodes into a whole
 // scratch World and swaps it in, which costs most of its time).

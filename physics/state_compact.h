@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 #include <string>
@@ -138,6 +139,73 @@ inline void copy_geometry(const ShapeGeometry& from, ShapeGeometry* to) {
     case ShapeType::count: break;
   }
 }
+
+// Ranges restored (the portable restore's, physics/state_check.cpp).
+inline constexpr Q32 k_max_coordinate = k_max_world_coordinate * 2;
+inline constexpr Q32 k_max_speed = k_max_linear_speed * 4;
+inline constexpr Q32 k_max_spin = k_max_angular_speed * 64;  // small bodies spin fast; the rim speed is what matters
+inline constexpr Q32 k_max_impulse = Q32::from_raw(int64_t{400000000} << 32);
+inline constexpr int64_t k_unit_tolerance = int64_t{1} << 16;
+
+/// The bytes of a body record by presence bits (bit 7 ignored), and of a
+/// shape record by its bits: one table load per record.
+inline constexpr auto k_body_record_bytes = [] {
+  std::array<uint8_t, 256> t{};
+  for (size_t present = 0; present < t.size(); ++present) {
+    size_t n = 2 + 32;
+    if (present & k_has_velocity) n += 24;
+    if (present & k_has_force) n += 24;
+    if (present & k_has_sleep_time) n += 8;
+    if (present & k_has_sleep_island) n += 4;
+    if (present & k_has_user_data) n += 8;
+    if (present & k_has_damping) n += 16;
+    if (present & k_has_gravity_scale) n += 8;
+    t[present] = static_cast<uint8_t>(n);
+  }
+  return t;
+}();
+inline constexpr auto k_shape_record_bytes = [] {
+  std::array<uint8_t, 256> t{};
+  for (size_t bits = 0; bits < t.size(); ++bits) {
+    size_t n = 5;
+    if (bits & k_shape_has_materials) n += 24;
+    if (bits & k_shape_has_filter) n += 20;
+    if (bits & k_shape_has_user_data) n += 8;
+    t[bits] = static_cast<uint8_t>(n);
+  }
+  return t;
+}();
+inline size_t body_record_bytes(uint8_t present) { return k_body_record_bytes[present]; }
+inline size_t shape_record_bytes(uint8_t bits) { return k_shape_record_bytes[bits]; }
+
+// ---------------------------------------------------------------------------
+// Restore's fast paths (state_compact_fast.cpp). The checks answer only
+// "all good": each accepts exactly what the detailed checker of
+// state_compact_restore.cpp accepts, or less (then that checker runs from the
+// same offset and names the culprit, or accepts after all); they fill the
+// same per-record tables. The applying functions write the world from
+// checked records. `pos` is the offset of the section; the functions return
+// or advance it past the section.
+// ---------------------------------------------------------------------------
+
+/// Bodies: fills simulated[0, cap) (cap = the body pool's capacity).
+bool fast_check_bodies(const uint8_t* data, size_t size, size_t* pos, const uint8_t* alive, size_t cap,
+                       uint8_t* simulated);
+/// Shapes: fills shape_body and shape_simulated (1: alive on a simulated
+/// body; zeroed beforehand) for the live shapes; geometries holds ≥ cap
+/// entries.
+bool fast_check_shapes(const uint8_t* data, size_t size, size_t* pos, const uint8_t* alive, size_t cap,
+                       const uint8_t* body_alive, const uint8_t* body_simulated, size_t body_cap,
+                       const ShapeGeometry* geometries, int32_t* shape_body, uint8_t* shape_simulated);
+/// Contacts (count and records).
+bool fast_check_contacts(const uint8_t* data, size_t size, size_t* pos, const uint8_t* shape_simulated,
+                         size_t shape_cap, size_t body_cap);
+size_t apply_bodies(World* w, const uint8_t* data, size_t pos, const uint8_t* alive, size_t cap,
+                    const RollbackBodyMass* masses);
+/// tail: body_cap entries of scratch (each body's last listed shape).
+size_t apply_shapes(World* w, const uint8_t* data, size_t pos, const uint8_t* alive, size_t cap,
+                    const ShapeGeometry* geometries, int32_t* tail, size_t body_cap);
+size_t apply_contacts(World* w, const uint8_t* data, size_t size, size_t pos);
 
 // ---------------------------------------------------------------------------
 // The records kept whole (world settings, full contacts, joints, joint
@@ -319,6 +387,79 @@ struct FieldReader {
     if (!ok()) return;
     if (v < lo || v > hi) {
       fail(pos - 4, n, " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+      return;
+    }
+    x = v;
+  }
+};
+
+/// FieldReader's checks without messages: `bad` after the first failure
+/// (the fast paths then hand over to the detailed checker). Names are
+/// ignored. Reads the same values as FieldReader from a record it accepts.
+struct FastFieldReader {
+  static constexpr bool k_reading = true;
+  const uint8_t* data;
+  size_t size;
+  size_t pos;
+  bool bad = false;
+
+  bool ok() const { return !bad; }
+  const uint8_t* take(size_t n) {
+    if (bad || n > size - pos) {
+      bad = true;
+      return nullptr;
+    }
+    const uint8_t* p = data + pos;
+    pos += n;
+    return p;
+  }
+  void q32(const char*, Q32& x) {
+    const uint8_t* p = take(8);
+    if (p == nullptr) return;
+    const int64_t raw = static_cast<int64_t>(load_le64(p));
+    bad = raw == INT64_MIN;
+    x = Q32::from_raw(raw);
+  }
+  void q32_in(const char* n, Q32& x, Q32, Q32, const char*) { q32(n, x); }
+  void vec2(const char*, const char*, Vec2& x) {
+    q32(nullptr, x.x);
+    q32(nullptr, x.y);
+  }
+  void vec2_in(const char*, const char*, Vec2& x, Q32, Q32, const char*) { vec2(nullptr, nullptr, x); }
+  void u32(const char*, uint32_t& x) {
+    if (const uint8_t* p = take(4)) x = load_le32(p);
+  }
+  void i32(const char*, int32_t& x) {
+    if (const uint8_t* p = take(4)) x = static_cast<int32_t>(load_le32(p));
+  }
+  void u16(const char*, uint16_t& x) {
+    if (const uint8_t* p = take(2)) x = load_le16(p);
+  }
+  void u64(const char*, uint64_t& x) {
+    if (const uint8_t* p = take(8)) x = load_le64(p);
+  }
+  void boolean(const char*, bool& x) {
+    const uint8_t* p = take(1);
+    if (p == nullptr) return;
+    bad = *p > 1;
+    x = *p == 1;
+  }
+  template <typename E>
+  void enum8(const char*, E& e, int32_t max) {
+    const uint8_t* p = take(1);
+    if (p == nullptr) return;
+    if (*p > max) {
+      bad = true;
+      return;
+    }
+    e = static_cast<E>(*p);
+  }
+  void ranged_i32(const char*, int32_t& x, int32_t lo, int32_t hi) {
+    int32_t v = 0;
+    i32(nullptr, v);
+    if (bad) return;
+    if (v < lo || v > hi) {
+      bad = true;
       return;
     }
     x = v;

@@ -12,9 +12,17 @@
 // plain little-endian loads; the rare sections with many fields (world
 // settings, full contacts, joints, joint events) run the field lists of
 // state_fields.h with a checking FieldReader (state_compact.h).
+// The bulk sections (bodies, shapes, contacts) are first checked by the fast
+// paths of state_compact_fast.cpp, which only answer "all good"; when they
+// refuse, the detailed checks here run over the section from the same offset
+// and name the culprit, so every refusal reads the same whichever path found
+// it (tests/replay/test_rollback_fast_checks.cpp compares the two). The
+// second pass writes those sections with the applying loops of that file.
 // Messages: "rollback_restore: offset N: body 12 position.x 3e6 m is outside
 // [-2000000, 2000000] m".
 #include "physics/state_compact.h"
+
+#include <atomic>
 
 #include "fixed/str_cat.h"
 
@@ -24,12 +32,6 @@ using namespace compact_detail;
 
 namespace {
 
-// Ranges restored (the portable restore's, physics/state_check.cpp).
-constexpr Q32 k_max_coordinate = k_max_world_coordinate * 2;
-constexpr Q32 k_max_speed = k_max_linear_speed * 4;
-constexpr Q32 k_max_spin = k_max_angular_speed * 64;  // small bodies spin fast; the rim speed is what matters
-constexpr Q32 k_max_impulse = Q32::from_raw(int64_t{400000000} << 32);
-constexpr int64_t k_unit_tolerance = int64_t{1} << 16;
 constexpr size_t k_pair_bytes = 16;
 
 /// What the first pass learns and the checks of later records need
@@ -39,6 +41,7 @@ struct Scratch {
   std::vector<uint8_t> body_simulated;
   std::vector<uint8_t> shape_alive;
   std::vector<int32_t> shape_body;
+  std::vector<uint8_t> shape_simulated;  // alive on a simulated body
   std::vector<uint8_t> joint_alive;
   std::vector<int32_t> tail;  // second pass: each body's last listed shape
 };
@@ -48,25 +51,9 @@ Scratch& scratch() {
   return s;
 }
 
-size_t body_record_bytes(uint8_t present) {
-  size_t n = 2 + 32;
-  if (present & k_has_velocity) n += 24;
-  if (present & k_has_force) n += 24;
-  if (present & k_has_sleep_time) n += 8;
-  if (present & k_has_sleep_island) n += 4;
-  if (present & k_has_user_data) n += 8;
-  if (present & k_has_damping) n += 16;
-  if (present & k_has_gravity_scale) n += 8;
-  return n;
-}
-
-size_t shape_record_bytes(uint8_t bits) {
-  size_t n = 5;
-  if (bits & k_shape_has_materials) n += 24;
-  if (bits & k_shape_has_filter) n += 20;
-  if (bits & k_shape_has_user_data) n += 8;
-  return n;
-}
+/// set_compact_fast_checks (tests turn the fast checks off to compare).
+std::atomic<bool> g_fast_checks{true};
+bool fast_checks() { return g_fast_checks.load(std::memory_order_relaxed); }
 
 template <bool Apply>
 class Decoder {
@@ -221,41 +208,52 @@ class Decoder {
                    " or the bytes left (" + std::to_string(size_ - pos_) + ", 5 per slot)");
       return;
     }
-    if (!Apply) {
+    if constexpr (!Apply) {
       alive->assign(cap, 0);
-    } else {
-      pool->generations.resize(cap);
-      pool->alive.resize(cap);
-      pool->free_heap.clear();
-      pool->alive_count = 0;
-    }
-    for (uint32_t i = 0; i < cap; ++i) {
-      const size_t slot_at = pos_;
-      const uint32_t g = u32();
-      const uint8_t live = u8();
-      if (!Apply) {
-        if (g == 0 || live > 1) {
+      uint8_t* live_out = alive->data();
+      const uint8_t* p = data_ + pos_;
+      for (uint32_t i = 0; i < cap; ++i, p += 5) {
+        const uint32_t g = load_le32(p);
+        const uint8_t live = p[4];
+        if (g == 0 || live > 1) [[unlikely]] {
           context(kind, i);
+          const size_t slot_at = static_cast<size_t>(p - data_);
           fail(slot_at, "generation " + std::to_string(g) + " / alive " + std::to_string(live) +
                             ": expected a generation ≥ 1 and alive 0 or 1");
           return;
         }
-        (*alive)[i] = live;
-      } else {
-        pool->generations[i] = g;
-        pool->alive[i] = live;
+        live_out[i] = live;
+      }
+    } else {
+      pool->generations.resize(cap);
+      pool->alive.resize(cap);
+      pool->free_heap.clear();
+      uint32_t* generations = pool->generations.data();
+      uint8_t* live_out = pool->alive.data();
+      const uint8_t* p = data_ + pos_;
+      int32_t alive_count = 0;
+      for (uint32_t i = 0; i < cap; ++i, p += 5) {
+        const uint8_t live = p[4];
+        generations[i] = load_le32(p);
+        live_out[i] = live;
         if (live != 0) {
-          ++pool->alive_count;
+          ++alive_count;
         } else {
           pool->free_heap.push_back(static_cast<int32_t>(i));  // ascending: a valid min-heap
         }
       }
+      pool->alive_count = alive_count;
     }
+    pos_ += static_cast<size_t>(cap) * 5;
   }
 
+
   void bodies();
+  void check_bodies();
   void shapes();
+  void check_shapes();
   void contacts();
+  void check_contacts();
   void read_pairs(std::vector<PairRecord>* out, const char* kind);
   void pairs();
   void joints();
@@ -276,47 +274,48 @@ class Decoder {
 template <bool Apply>
 void Decoder<Apply>::bodies() {
   const size_t cap = sc_.body_alive.size();
-  if (!Apply) {
+  if constexpr (Apply) {
+    pos_ = apply_bodies(w_, data_, pos_, sc_.body_alive.data(), cap, masses_.data());
+  } else {
     if (masses_.size() < cap) {
       fail(pos_, "the buffer's body masses hold " + std::to_string(masses_.size()) + " entries, the image needs " +
                      std::to_string(cap));
       return;
     }
     sc_.body_simulated.assign(cap, 0);
-  } else {
-    w_->bodies.resize(cap);
-    w_->body_sims.resize(cap);
+    if (!fast_checks() ||
+        !fast_check_bodies(data_, size_, &pos_, sc_.body_alive.data(), cap, sc_.body_simulated.data())) {
+      check_bodies();  // names the culprit (or accepts after all)
+    }
   }
+}
+
+/// The detailed check of the bodies (after fast_check_bodies refused).
+template <bool Apply>
+void Decoder<Apply>::check_bodies() {
+  const size_t cap = sc_.body_alive.size();
   const Q32 unit_lim = Q32::from_raw(Q32::one().raw + k_unit_tolerance);
   for (size_t i = 0; i < cap; ++i) {
-    if (sc_.body_alive[i] == 0) {
-      if (Apply) {
-        w_->bodies[i] = Body{};
-        w_->body_sims[i] = BodySim{};
-      }
-      continue;
-    }
+    if (sc_.body_alive[i] == 0) continue;
     context("body", static_cast<int64_t>(i));
     const size_t at = pos_;
     if (!need(2, "body flags")) return;
     const uint8_t flags = u8();
     const uint8_t present = u8();
     const uint8_t type = flags & k_body_type_mask;
-    if (!Apply) {
-      if (type > static_cast<uint8_t>(BodyType::dynamic_body) || (flags & 0x80) != 0 || (present & 0x80) != 0) {
-        fail(at, "flags " + std::to_string(flags) + " / presence " + std::to_string(present) +
-                     ": expected a body type 0..2 and defined bits only");
-        return;
-      }
-      if (!need(body_record_bytes(present) - 2, "the body record")) return;
+    if (type > static_cast<uint8_t>(BodyType::dynamic_body) || (flags & 0x80) != 0 || (present & 0x80) != 0) {
+      fail(at, "flags " + std::to_string(flags) + " / presence " + std::to_string(present) +
+                   ": expected a body type 0..2 and defined bits only");
+      return;
     }
+    if (!need(body_record_bytes(present) - 2, "the body record")) return;
     Transform xf;
     xf.p.x = q32("position.x", k_max_coordinate, "m");
     xf.p.y = q32("position.y", k_max_coordinate, "m");
     const size_t rot_at = pos_;
     xf.q.c = q32("rotation.c", unit_lim, "");
     xf.q.s = q32("rotation.s", unit_lim, "");
-    if (!Apply && ok()) {
+    if (ok()) {
       const Q32 n = xf.q.c * xf.q.c + xf.q.s * xf.q.s;  // components ≤ 1 + 2^-16: no saturation
       if ((n - Q32::one()).raw > k_unit_tolerance || (Q32::one() - n).raw > k_unit_tolerance) {
         fail(rot_at, "rotation (" + to_string(xf.q.c) + ", " + to_string(xf.q.s) +
@@ -324,89 +323,48 @@ void Decoder<Apply>::bodies() {
       }
     }
     const bool moving = type != static_cast<uint8_t>(BodyType::static_body);
-    Vec2 v{};
-    Q32 omega;
     if (present & k_has_velocity) {
       const Q32 vmax = moving ? k_max_speed : Q32::zero();
-      v.x = q32("linear_velocity.x", vmax, "m/s");
-      v.y = q32("linear_velocity.y", vmax, "m/s");
-      omega = q32("angular_velocity", moving ? k_max_spin : Q32::zero(), "rad/s");
+      q32("linear_velocity.x", vmax, "m/s");
+      q32("linear_velocity.y", vmax, "m/s");
+      q32("angular_velocity", moving ? k_max_spin : Q32::zero(), "rad/s");
     }
-    Vec2 force{};
-    Q32 torque;
     if (present & k_has_force) {
-      force.x = q32("force.x", k_max_force, "N");
-      force.y = q32("force.y", k_max_force, "N");
-      torque = q32("torque", k_max_torque, "N·m");
+      q32("force.x", k_max_force, "N");
+      q32("force.y", k_max_force, "N");
+      q32("torque", k_max_torque, "N·m");
     }
-    Q32 sleep_time;
     if (present & k_has_sleep_time) {
       const size_t st_at = pos_;
-      sleep_time = q32();
-      if (!Apply && (sleep_time < Q32::zero() || sleep_time > k_time_to_sleep)) {
+      const Q32 sleep_time = q32();
+      if (sleep_time < Q32::zero() || sleep_time > k_time_to_sleep) {
         refuse_range(st_at, "sleep_time", sleep_time, Q32::zero(), k_time_to_sleep, "s");
       }
     }
-    int32_t island = k_null_index;
     if (present & k_has_sleep_island) {
       const size_t is_at = pos_;
-      island = i32();
-      if (!Apply && (island < 0 || static_cast<size_t>(island) >= cap || sc_.body_alive[static_cast<size_t>(island)] == 0)) {
+      const int32_t island = i32();
+      if (island < 0 || static_cast<size_t>(island) >= cap || sc_.body_alive[static_cast<size_t>(island)] == 0) {
         fail(is_at, "sleep_island " + std::to_string(island) + " is not a live body");
       }
     }
-    const uint64_t user = (present & k_has_user_data) ? u64() : 0;
-    Q32 lin_damp, ang_damp;
+    if (present & k_has_user_data) pos_ += 8;
     if (present & k_has_damping) {
       const size_t d_at = pos_;
-      lin_damp = q32();
-      ang_damp = q32();
-      if (!Apply && (lin_damp < Q32::zero() || lin_damp > k_max_damping)) {
+      const Q32 lin_damp = q32();
+      const Q32 ang_damp = q32();
+      if (lin_damp < Q32::zero() || lin_damp > k_max_damping) {
         refuse_range(d_at, "linear_damping", lin_damp, Q32::zero(), k_max_damping, "1/s");
       }
-      if (!Apply && (ang_damp < Q32::zero() || ang_damp > k_max_damping)) {
+      if (ang_damp < Q32::zero() || ang_damp > k_max_damping) {
         refuse_range(d_at + 8, "angular_damping", ang_damp, Q32::zero(), k_max_damping, "1/s");
       }
     }
-    const Q32 gravity_scale =
-        (present & k_has_gravity_scale) ? q32("gravity_scale", k_max_gravity_scale, "") : Q32::one();
+    if (present & k_has_gravity_scale) q32("gravity_scale", k_max_gravity_scale, "");
     if (!ok()) return;
     const bool awake = (flags & k_body_awake) != 0;
     const bool enabled = (flags & k_body_enabled) != 0;
-    if (!Apply) {
-      sc_.body_simulated[i] = moving && awake && enabled ? 1 : 0;
-      continue;
-    }
-    const RollbackBodyMass& m = masses_[i];
-    Body& b = w_->bodies[i];
-    b.type = static_cast<BodyType>(type);
-    b.head_shape = k_null_index;
-    b.shape_count = 0;
-    b.mass = m.mass;
-    b.rotational_inertia = m.rotational_inertia;
-    b.sleep_time = sleep_time;
-    b.sleep_island = island;
-    b.user_data = user;
-    b.enable_sleep = (flags & k_body_enable_sleep) != 0;
-    b.awake = awake;
-    b.enabled = enabled;
-    b.fixed_rotation = (flags & k_body_fixed_rotation) != 0;
-    b.bullet = (flags & k_body_bullet) != 0;
-    b.min_extent = m.min_extent;
-    b.max_extent = m.max_extent;
-    BodySim& s = w_->body_sims[i];
-    s.transform = xf;
-    s.local_center = m.local_center;
-    s.center = transform_point(xf, m.local_center);
-    s.linear_velocity = v;
-    s.angular_velocity = omega;
-    s.force = force;
-    s.torque = torque;
-    s.inv_mass = m.inv_mass;
-    s.inv_inertia = m.inv_inertia;
-    s.linear_damping = lin_damp;
-    s.angular_damping = ang_damp;
-    s.gravity_scale = gravity_scale;
+    sc_.body_simulated[i] = moving && awake && enabled ? 1 : 0;
   }
 }
 
@@ -414,198 +372,151 @@ template <bool Apply>
 void Decoder<Apply>::shapes() {
   const size_t cap = sc_.shape_alive.size();
   const size_t body_cap = sc_.body_alive.size();
-  if (!Apply) {
+  if constexpr (Apply) {
+    sc_.tail.resize(body_cap);
+    pos_ = apply_shapes(w_, data_, pos_, sc_.shape_alive.data(), cap, geometries_.data(), sc_.tail.data(), body_cap);
+  } else {
     if (geometries_.size() < cap) {
       fail(pos_, "the buffer's geometries hold " + std::to_string(geometries_.size()) +
                      " entries, the image needs " + std::to_string(cap));
       return;
     }
     sc_.shape_body.assign(cap, k_null_index);
-  } else {
-    w_->shapes.resize(cap);
-    w_->shape_geometries.resize(cap);
-    sc_.tail.assign(body_cap, k_null_index);
-  }
-  const ShapeDef& d = default_shape();
-  for (size_t i = 0; i < cap; ++i) {
-    if (sc_.shape_alive[i] == 0) {
-      if (Apply) {
-        w_->shapes[i] = Shape{};
-        w_->shape_geometries[i] = ShapeGeometry{};
-      }
-      continue;
+    sc_.shape_simulated.assign(cap, 0);
+    if (!fast_checks() ||
+        !fast_check_shapes(data_, size_, &pos_, sc_.shape_alive.data(), cap, sc_.body_alive.data(),
+                           sc_.body_simulated.data(), body_cap, geometries_.data(), sc_.shape_body.data(),
+                           sc_.shape_simulated.data())) {
+      check_shapes();  // names the culprit (or accepts after all)
     }
-    context("shape", static_cast<int64_t>(i));
-    const size_t at = pos_;
-    if (!Apply && !need(5, "the shape record")) return;
-    const int32_t body = i32();
-    const uint8_t bits = u8();
-    const uint8_t type = bits & k_shape_type_mask;
-    if (!Apply) {
-      if (body < 0 || static_cast<size_t>(body) >= body_cap || sc_.body_alive[static_cast<size_t>(body)] == 0) {
-        fail(at, "body " + std::to_string(body) + " is not a live body");
-        return;
-      }
-      const ShapeGeometry& g = geometries_[i];
-      if (type > static_cast<uint8_t>(ShapeType::chain_segment) || static_cast<uint8_t>(g.type) != type ||
-          (g.type == ShapeType::polygon && (g.polygon.count < 3 || g.polygon.count > k_max_polygon_vertices))) {
-        fail(at + 4, "type " + std::to_string(type) + " does not match the buffer's geometry (type " +
-                         std::to_string(static_cast<int32_t>(g.type)) + ")");
-        return;
-      }
-      if (!need(shape_record_bytes(bits) - 5, "the shape record")) return;
-      sc_.shape_body[i] = body;
-    }
-    Q32 friction = d.friction, restitution = d.restitution, density = d.density;
-    if (bits & k_shape_has_materials) {
-      const size_t m_at = pos_;
-      friction = q32();
-      restitution = q32();
-      density = q32();
-      if (!Apply) {
-        if (friction < Q32::zero() || friction > k_max_friction) {
-          refuse_range(m_at, "friction", friction, Q32::zero(), k_max_friction, "");
-        } else if (restitution < Q32::zero() || restitution > Q32::one()) {
-          refuse_range(m_at + 8, "restitution", restitution, Q32::zero(), Q32::one(), "");
-        } else if (density < Q32::zero() || density > k_max_density) {
-          refuse_range(m_at + 16, "density", density, Q32::zero(), k_max_density, "kg/m²");
-        }
-      }
-    }
-    Filter filter{};
-    if (bits & k_shape_has_filter) {
-      filter.category_bits = u64();
-      filter.mask_bits = u64();
-      filter.group_index = i32();
-    }
-    const uint64_t user = (bits & k_shape_has_user_data) ? u64() : 0;
-    if (!ok()) return;
-    if (!Apply) continue;
-    Shape& s = w_->shapes[i];
-    s.body_index = body;
-    s.type = static_cast<ShapeType>(type);
-    s.friction = friction;
-    s.restitution = restitution;
-    s.density = density;
-    s.filter = filter;
-    s.user_data = user;
-    s.is_sensor = (bits & k_shape_sensor) != 0;
-    s.enable_hit_events = (bits & k_shape_hit_events) != 0;
-    copy_geometry(geometries_[i], &w_->shape_geometries[i]);
-    // Shape lists run in ascending shape index.
-    Body& b = w_->bodies[static_cast<size_t>(body)];
-    int32_t& tail = sc_.tail[static_cast<size_t>(body)];
-    s.prev_shape = tail;
-    s.next_shape = k_null_index;
-    if (tail == k_null_index) {
-      b.head_shape = static_cast<int32_t>(i);
-    } else {
-      w_->shapes[static_cast<size_t>(tail)].next_shape = static_cast<int32_t>(i);
-    }
-    tail = static_cast<int32_t>(i);
-    ++b.shape_count;
-    s.aabb = compute_shape_aabb(w_->shape_geometries[i], w_->body_sims[static_cast<size_t>(body)].transform);
   }
 }
 
+/// The detailed check of the shapes (after fast_check_shapes refused).
+template <bool Apply>
+void Decoder<Apply>::check_shapes() {
+  const size_t cap = sc_.shape_alive.size();
+  const size_t body_cap = sc_.body_alive.size();
+  for (size_t i = 0; i < cap; ++i) {
+    if (sc_.shape_alive[i] == 0) continue;
+    context("shape", static_cast<int64_t>(i));
+    const size_t at = pos_;
+    if (!need(5, "the shape record")) return;
+    const int32_t body = i32();
+    const uint8_t bits = u8();
+    const uint8_t type = bits & k_shape_type_mask;
+    if (body < 0 || static_cast<size_t>(body) >= body_cap || sc_.body_alive[static_cast<size_t>(body)] == 0) {
+      fail(at, "body " + std::to_string(body) + " is not a live body");
+      return;
+    }
+    const ShapeGeometry& g = geometries_[i];
+    if (type > static_cast<uint8_t>(ShapeType::chain_segment) || static_cast<uint8_t>(g.type) != type ||
+        (g.type == ShapeType::polygon && (g.polygon.count < 3 || g.polygon.count > k_max_polygon_vertices))) {
+      fail(at + 4, "type " + std::to_string(type) + " does not match the buffer's geometry (type " +
+                       std::to_string(static_cast<int32_t>(g.type)) + ")");
+      return;
+    }
+    if (!need(shape_record_bytes(bits) - 5, "the shape record")) return;
+    sc_.shape_body[i] = body;
+    sc_.shape_simulated[i] = sc_.body_simulated[static_cast<size_t>(body)];
+    if (bits & k_shape_has_materials) {
+      const size_t m_at = pos_;
+      const Q32 friction = q32();
+      const Q32 restitution = q32();
+      const Q32 density = q32();
+      if (friction < Q32::zero() || friction > k_max_friction) {
+        refuse_range(m_at, "friction", friction, Q32::zero(), k_max_friction, "");
+      } else if (restitution < Q32::zero() || restitution > Q32::one()) {
+        refuse_range(m_at + 8, "restitution", restitution, Q32::zero(), Q32::one(), "");
+      } else if (density < Q32::zero() || density > k_max_density) {
+        refuse_range(m_at + 16, "density", density, Q32::zero(), k_max_density, "kg/m²");
+      }
+    }
+    if (bits & k_shape_has_filter) pos_ += 20;
+    if (bits & k_shape_has_user_data) pos_ += 8;
+    if (!ok()) return;
+  }
+}
 template <bool Apply>
 void Decoder<Apply>::contacts() {
+  if constexpr (Apply) {
+    pos_ = apply_contacts(w_, data_, size_, pos_);
+  } else {
+    if (!fast_checks() || !fast_check_contacts(data_, size_, &pos_, sc_.shape_simulated.data(),
+                                               sc_.shape_alive.size(), sc_.body_alive.size())) {
+      check_contacts();  // names the culprit (or accepts after all)
+    }
+  }
+}
+
+/// The detailed check of the contacts (after fast_check_contacts refused).
+template <bool Apply>
+void Decoder<Apply>::check_contacts() {
   context("contacts");
   if (!need(4, "count")) return;
   const uint32_t n = u32();
-  if (!Apply && n > (size_ - pos_) / 9) {
+  if (n > (size_ - pos_) / 9) {
     fail(pos_ - 4, "count " + std::to_string(n) + " needs more than the " + std::to_string(size_ - pos_) +
                        " bytes left (9 per contact at least)");
     return;
   }
   const int32_t shape_cap = static_cast<int32_t>(sc_.shape_alive.size());
   const int32_t body_cap = static_cast<int32_t>(sc_.body_alive.size());
-  if (Apply) w_->contacts.resize(n);
   uint64_t prev_key = 0;
   for (uint32_t i = 0; i < n; ++i) {
     context("contact", i);
     const size_t at = pos_;
-    if (!Apply && !need(9, "the contact header")) return;
+    if (!need(9, "the contact header")) return;
     const int32_t a = i32();
     const int32_t b = i32();
     const uint8_t head = u8();
     const int32_t count = head & k_contact_count_mask;
-    if (!Apply) {
-      if (a < 0 || b >= shape_cap || a >= b || (head & ~(k_contact_count_mask | k_contact_full)) != 0 || count > 2) {
-        fail(at, "shapes (" + std::to_string(a) + ", " + std::to_string(b) + ") / header " + std::to_string(head) +
-                     ": expected two shapes of the pool in ascending order and 0..2 points");
-        return;
-      }
-      const uint64_t key = shape_pair_key(a, b);
-      if (i > 0 && key <= prev_key) {
-        fail(at, "is not sorted by shape pair");
-        return;
-      }
-      prev_key = key;
+    if (a < 0 || b >= shape_cap || a >= b || (head & ~(k_contact_count_mask | k_contact_full)) != 0 || count > 2) {
+      fail(at, "shapes (" + std::to_string(a) + ", " + std::to_string(b) + ") / header " + std::to_string(head) +
+                   ": expected two shapes of the pool in ascending order and 0..2 points");
+      return;
     }
+    const uint64_t key = shape_pair_key(a, b);
+    if (i > 0 && key <= prev_key) {
+      fail(at, "is not sorted by shape pair");
+      return;
+    }
+    prev_key = key;
     if ((head & k_contact_full) != 0) {
       Contact c{};
       const size_t rec_at = pos_;
       visited([&](auto& v) { visit_contact(v, c); });
       if (!ok()) return;
-      if (!Apply) {
-        if (c.shape_a != a || c.shape_b != b || c.manifold.point_count != count || c.body_a < 0 ||
-            c.body_a >= body_cap || c.body_b < 0 || c.body_b >= body_cap) {
-          fail(rec_at, "full record disagrees with its header or names bodies outside the pool");
+      if (c.shape_a != a || c.shape_b != b || c.manifold.point_count != count || c.body_a < 0 ||
+          c.body_a >= body_cap || c.body_b < 0 || c.body_b >= body_cap) {
+        fail(rec_at, "full record disagrees with its header or names bodies outside the pool");
+        return;
+      }
+      for (int32_t k = 0; k < count; ++k) {
+        const size_t kk = static_cast<size_t>(k);
+        if (abs(c.normal_impulse[kk]) > k_max_impulse || abs(c.tangent_impulse[kk]) > k_max_impulse) {
+          fail(rec_at, "stored impulse of point " + std::to_string(k) + " is outside ±" + to_string(k_max_impulse) +
+                           " N·s");
           return;
         }
-        for (int32_t k = 0; k < count; ++k) {
-          const size_t kk = static_cast<size_t>(k);
-          if (abs(c.normal_impulse[kk]) > k_max_impulse || abs(c.tangent_impulse[kk]) > k_max_impulse) {
-            fail(rec_at, "stored impulse of point " + std::to_string(k) + " is outside ±" + to_string(k_max_impulse) +
-                             " N·s");
-            return;
-          }
-        }
-      } else {
-        w_->contacts[i] = c;
       }
       continue;
     }
-    if (!Apply) {
-      if (sc_.shape_alive[static_cast<size_t>(a)] == 0 || sc_.shape_alive[static_cast<size_t>(b)] == 0 ||
-          sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(a)])] == 0 ||
-          sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(b)])] == 0) {
-        fail(at, "is compact, but its shapes are not both alive on simulated bodies");
-        return;
-      }
-      if (!need(static_cast<size_t>(count) * 18, "the contact points")) return;
+    if (sc_.shape_alive[static_cast<size_t>(a)] == 0 || sc_.shape_alive[static_cast<size_t>(b)] == 0 ||
+        sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(a)])] == 0 ||
+        sc_.body_simulated[static_cast<size_t>(sc_.shape_body[static_cast<size_t>(b)])] == 0) {
+      fail(at, "is compact, but its shapes are not both alive on simulated bodies");
+      return;
     }
-    Contact* c = nullptr;
-    if (Apply) {
-      // The manifold geometry and mixed materials are zero: the next step
-      // recomputes them (rollback.h).
-      c = &w_->contacts[i];
-      *c = Contact{};
-      c->shape_a = a;
-      c->shape_b = b;
-      c->generation_a = w_->shape_pool.generations[static_cast<size_t>(a)];
-      c->generation_b = w_->shape_pool.generations[static_cast<size_t>(b)];
-      c->body_a = w_->shapes[static_cast<size_t>(a)].body_index;
-      c->body_b = w_->shapes[static_cast<size_t>(b)].body_index;
-      c->flags = count > 0 ? k_contact_touching : 0u;
-      c->manifold.point_count = count;
-    }
+    if (!need(static_cast<size_t>(count) * 18, "the contact points")) return;
     for (int32_t k = 0; k < count; ++k) {
-      const size_t kk = static_cast<size_t>(k);
-      const uint16_t id = u16();
-      const Q32 jn = q32(k == 0 ? "points[0].normal_impulse" : "points[1].normal_impulse", k_max_impulse, "N·s");
-      const Q32 jt = q32(k == 0 ? "points[0].tangent_impulse" : "points[1].tangent_impulse", k_max_impulse, "N·s");
-      if (Apply) {
-        c->manifold.points[kk].id = id;
-        c->normal_impulse[kk] = jn;
-        c->tangent_impulse[kk] = jt;
-      }
+      pos_ += 2;  // feature id
+      q32(k == 0 ? "points[0].normal_impulse" : "points[1].normal_impulse", k_max_impulse, "N·s");
+      q32(k == 0 ? "points[0].tangent_impulse" : "points[1].tangent_impulse", k_max_impulse, "N·s");
     }
     if (!ok()) return;
   }
 }
-
 template <bool Apply>
 void Decoder<Apply>::read_pairs(std::vector<PairRecord>* out, const char* kind) {
   context(kind);
@@ -726,6 +637,8 @@ void Decoder<Apply>::joints() {
 }
 
 }  // namespace
+
+void set_compact_fast_checks(bool on) { g_fast_checks.store(on, std::memory_order_relaxed); }
 
 bool check_compact_records(const uint8_t* image, size_t size, size_t from, CompactStructureView structure,
                            std::string* error) {

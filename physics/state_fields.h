@@ -135,17 +135,14 @@ inline const char* polygon_name(int32_t i, int32_t which) {
 inline constexpr int32_t k_point_field_count = 10;
 
 inline const char* point_name(int32_t i, int32_t which) {
-  static const std::vector<std::string> names = [] {
-    static const char* const fields[k_point_field_count] = {
-        "point.x",    "point.y",    "anchor_a.x", "anchor_a.y",     "anchor_b.x",
-        "anchor_b.y", "separation", "id",         "normal_impulse", "tangent_impulse"};
-    std::vector<std::string> n;
-    for (int32_t k = 0; k < 2; ++k) {
-      for (const char* f : fields) n.push_back("points[" + std::to_string(k) + "]." + f);
-    }
-    return n;
-  }();
-  return names[static_cast<size_t>(i * k_point_field_count + which)].c_str();
+  // Literals, so a visitor that ignores names costs nothing for them.
+  static constexpr const char* k_names[2][k_point_field_count] = {
+      {"points[0].point.x", "points[0].point.y", "points[0].anchor_a.x", "points[0].anchor_a.y", "points[0].anchor_b.x",
+       "points[0].anchor_b.y", "points[0].separation", "points[0].id", "points[0].normal_impulse", "points[0].tangent_impulse"},
+      {"points[1].point.x", "points[1].point.y", "points[1].anchor_a.x", "points[1].anchor_a.y", "points[1].anchor_b.x",
+       "points[1].anchor_b.y", "points[1].separation", "points[1].id", "points[1].normal_impulse", "points[1].tangent_impulse"},
+  };
+  return k_names[static_cast<size_t>(i)][static_cast<size_t>(which)];
 }
 
 

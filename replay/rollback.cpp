@@ -54,13 +54,19 @@ Status rollback_save(WorldId world, RollbackBuffer* buffer) {
   Status s = state_access::resolve_world_state(world, "rollback_save", true, &w);
   if (!s.ok()) return s;
   if (buffer == nullptr) return Status{StatusCode::invalid_argument, "rollback_save: buffer is null"};
-  std::vector<uint8_t>& image = buffer->image;
-  image.resize(k_header_bytes + state_access::compact_records_bound(*w));
-  std::memcpy(image.data(), k_rollback_magic, 4);
-  store_u32(image.data() + 4, k_rollback_format_version);
-  const size_t n = state_access::write_compact_records(*w, image.data() + k_header_bytes,
+  // The records are written into the thread's scratch, sized for their upper
+  // bound (several times the image: every contact counted as a full record),
+  // and then copied into the image: growing the image itself to the bound
+  // zero-filled the bytes beyond the last image on every save, which cost
+  // more than writing the records.
+  thread_local std::vector<uint8_t> scratch;
+  const size_t bound = k_header_bytes + state_access::compact_records_bound(*w);
+  if (scratch.size() < bound) scratch.resize(bound);
+  std::memcpy(scratch.data(), k_rollback_magic, 4);
+  store_u32(scratch.data() + 4, k_rollback_format_version);
+  const size_t n = state_access::write_compact_records(*w, scratch.data() + k_header_bytes,
                                                        {&buffer->geometries, &buffer->masses});
-  image.resize(k_header_bytes + n);
+  buffer->image.assign(scratch.data(), scratch.data() + k_header_bytes + n);
   return s;
 }
 

@@ -6,7 +6,8 @@
 //
 // tests/counting_allocator.h (included here, once in the replay test binary)
 // counts operator new calls while g_count_allocations is set, only around
-// the apply_command calls under test.
+// the apply_command calls under test. The same counter shows that a warm
+// compact rollback save and restore (replay/rollback.h) allocate nothing.
 #include <catch2/catch.hpp>
 
 #include "../counting_allocator.h"  // this binary's counting operator new/delete
@@ -19,6 +20,8 @@
 
 #include "physics/tandem.h"
 #include "replay/commands.h"
+#include "replay/rollback.h"
+#include "replay_test_scenes.h"
 
 using namespace tandem;
 
@@ -67,4 +70,22 @@ TEST_CASE("apply_command of force, impulse and velocity on a live body allocates
   CHECK(total == 0);
   // The commands took effect (the last one set the velocity before the step).
   CHECK(body_linear_velocity(body) != Vec2{});
+}
+
+TEST_CASE("warm rollback_save and rollback_restore allocate nothing", "[replay][rollback]") {
+  using namespace tandem::replay_test;
+  const WorldId w = make_scene_world(Scene::pile);
+  for (int64_t t = 0; t < 40; ++t) step_scene(Scene::pile, w, t);
+  RollbackBuffer buffer;
+  REQUIRE(rollback_save(w, &buffer).ok());  // sizes the buffer and the scratch
+  REQUIRE(rollback_restore(w, buffer).ok());
+  g_allocation_count = 0;
+  g_count_allocations = true;
+  const bool saved = rollback_save(w, &buffer).ok();
+  const bool restored = rollback_restore(w, buffer).ok();
+  g_count_allocations = false;
+  CHECK(saved);
+  CHECK(restored);
+  CHECK(g_allocation_count.load() == 0);
+  (void)destroy_world(w);
 }
