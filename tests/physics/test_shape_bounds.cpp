@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fixed/fault.h"
+#include "fixed/splitmix64.h"
 #include "physics/shape.h"
 
 namespace {
@@ -19,12 +20,7 @@ using namespace tandem;
 /// A small deterministic generator (splitmix64).
 struct Random {
   uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+  uint64_t next() { return splitmix64_next(&state); }
   /// A raw value: mostly in the engine's ranges, sometimes anywhere.
   int64_t raw(int64_t typical) {
     switch (next() % 8) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fixed/splitmix64.h"
 #include "physics/state_access.h"
 #include "replay/rollback.h"
 #include "replay_test_scenes.h"
@@ -49,12 +50,7 @@ Outcome restore_into(WorldId w, const RollbackBuffer& buffer) {
 /// A small deterministic generator (splitmix64).
 struct Random {
   uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+  uint64_t next() { return splitmix64_next(&state); }
   size_t below(size_t n) { return static_cast<size_t>(next() % n); }
 };
 
