@@ -6,50 +6,24 @@
 // quoted in the README's "Range and limits" table, at the precision asserted.
 #include <catch2/catch.hpp>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "fixed/fault.h"
 #include "physics/tandem.h"
-#include "../test_world.h"
+#include "edge_support.h"
 
 namespace {
 
 using namespace tandem;
 using namespace tandem::literals;
+using namespace tandem::stress_edges;
 
 constexpr long double k_two32 = 4294967296.0L;
 long double ld(Q32 v) { return static_cast<long double>(v.raw) / k_two32; }
 const Q32 k_dt = Q32::from_ratio(1, 60);
 
-std::atomic<int64_t> g_faults{0};
-void count_fault(FixedFault, const char*) { g_faults.fetch_add(1); }
-
-/// Counts fixed-point faults while alive (only builds with fault checks report any).
-struct FaultCount {
-  FixedFaultHandler previous;
-  FaultCount() : previous(set_fixed_fault_handler(&count_fault)) { g_faults.store(0); }
-  ~FaultCount() { set_fixed_fault_handler(previous); }
-  int64_t count() const { return g_faults.load(); }
-};
-
-/// A world destroyed when the test ends.
-struct TestWorld : UniqueWorld {
-  explicit TestWorld(const WorldDef& def = default_world_def()) : UniqueWorld(test_world::require_world(def).release()) {}
-};
-
-BodyId static_box(WorldId w, Vec2 position, Q32 hw, Q32 hh) {
-  BodyDef bd = default_body_def();
-  bd.position = position;
-  Result<BodyId> b = create_body(w, bd);
-  REQUIRE(b.ok());
-  Polygon box;
-  REQUIRE(make_box(hw, hh, &box).ok());
-  REQUIRE(create_polygon_shape(b.value, default_shape_def(), box).ok());
-  return b.value;
-}
 
 BodyId dynamic_box(WorldId w, Vec2 position, Q32 hw, Q32 hh, Q32 density) {
   BodyDef bd = default_body_def();
