@@ -341,7 +341,9 @@ void prepare_contact_constraints(World* world, StepContext* context) {
     // unused second point zeroed as a whole. A field added to either struct
     // must be written here too: the sizes are asserted so that a merge that
     // adds one stops at this line.
-    static_assert(sizeof(ContactConstraintPoint) == 176 && sizeof(ContactConstraint) == 464,
+    // (Sizes of 64-bit targets; i686 packs 64-bit members at 4 bytes.)
+    static_assert(sizeof(void*) != 8 || (sizeof(ContactConstraintPoint) == 176 &&
+                                         sizeof(ContactConstraint) == 464),
                   "prepare_contact_constraints writes every field of ContactConstraint: add the new field there");
     cc.solver_a = ia;
     cc.solver_b = ib;
