@@ -45,8 +45,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
 
-std::string hex64(uint64_t v) { return hash_text(v); }
-
 // Reads a replay file; prints the error (exit 2) or the truncation warning.
 int load_replay(const char* command, const std::string& path, Replay* out, ReplayReadInfo* info) {
   const Status s = read_replay_file(path, out, info);
@@ -151,14 +149,14 @@ int run_record(const RecordArgs& a, const GlobalOptions& g) {
     j["bytes"] = written.size();
     j["keyframe_every"] = a.keyframe_every;
     j["tick_hashes"] = !a.no_hash;
-    j["final_hash"] = hex64(final_hash);
+    j["final_hash"] = hash_text(final_hash);
     std::printf("%s\n", j.dump().c_str());
     return 0;
   }
   if (!quiet)
     std::printf("recorded %s: %" PRId64 " ticks of %s, %zu bytes, keyframe every %u ticks%s\n", a.out.c_str(), ticks,
                 a.scene.c_str(), written.size(), a.keyframe_every, a.no_hash ? ", no tick hashes" : "");
-  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hex64(final_hash).c_str());
+  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hash_text(final_hash).c_str());
   return 0;
 }
 
@@ -208,8 +206,8 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
     j["ticks"] = ticks;
     j["recorded_ticks"] = replay.tick_count();
     j["truncated"] = info.truncated;
-    j["final_hash"] = hex64(hash);
-    if (has_recorded) j["recorded_hash"] = hex64(recorded);
+    j["final_hash"] = hash_text(hash);
+    if (has_recorded) j["recorded_hash"] = hash_text(recorded);
     j["refused_commands"] = refused;
     j["skipped_payloads"] = skipped;
     std::printf("%s\n", j.dump().c_str());
@@ -219,13 +217,13 @@ int run_replay(const ReplayArgs& a, const GlobalOptions& g) {
     std::printf("replay %s: %" PRId64 " of %" PRId64 " recorded ticks, %zu keyframes, time step %s s\n", a.file.c_str(),
                 ticks, replay.tick_count(), replay.keyframes.size(), q32_raw_text(replay.header.time_step.raw).c_str());
     if (has_recorded)
-      std::printf("recorded hash at tick %" PRId64 ": %s (%s)\n", ticks, hex64(recorded).c_str(),
+      std::printf("recorded hash at tick %" PRId64 ": %s (%s)\n", ticks, hash_text(recorded).c_str(),
                   recorded == hash ? "matches" : "DIFFERS: run tandem verify");
     if (refused != 0) std::printf("commands refused (as when recorded): %u\n", refused);
     if (skipped != 0) std::printf("user input payloads skipped (the game's meaning is unknown here): %u\n", skipped);
     if (!a.save_state.empty()) std::printf("state written to %s\n", a.save_state.c_str());
   }
-  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hex64(hash).c_str());
+  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hash_text(hash).c_str());
   return 0;
 }
 
@@ -305,8 +303,8 @@ Json verdict_json(const FileVerdict& v) {
   j["skipped_payloads"] = rep.skipped_payloads;
   if (rep.mismatch) {
     j["mismatch_tick"] = rep.mismatch_tick;
-    j["expected_hash"] = hex64(rep.expected_hash);
-    j["actual_hash"] = hex64(rep.actual_hash);
+    j["expected_hash"] = hash_text(rep.expected_hash);
+    j["actual_hash"] = hash_text(rep.actual_hash);
     j["self_consistent"] = rep.self_consistent;
     if (rep.game_state_mismatch) j["game_state_mismatch"] = true;
     if (rep.located) {
@@ -329,7 +327,7 @@ std::string verdict_line(const FileVerdict& v) {
     return "OK        " + v.file + buf + (v.truncated ? " (truncated file)" : "");
   }
   std::snprintf(buf, sizeof buf, ": tick %" PRId64 ", expected %s, got %s", rep.mismatch_tick,
-                hex64(rep.expected_hash).c_str(), hex64(rep.actual_hash).c_str());
+                hash_text(rep.expected_hash).c_str(), hash_text(rep.actual_hash).c_str());
   std::string line = "MISMATCH  " + v.file + buf;
   if (rep.located) line += "; at tick " + std::to_string(rep.located_tick) + ": " + rep.difference.describe();
   return line;
@@ -469,8 +467,8 @@ int run_diff(const DiffArgs& a, const GlobalOptions& g) {
         j["ticks_b"] = rep.ticks_b;
       } else {
         if (rep.method != "snapshot") j["tick"] = rep.tick;
-        j["hash_a"] = hex64(rep.hash_a);
-        j["hash_b"] = hex64(rep.hash_b);
+        j["hash_a"] = hash_text(rep.hash_a);
+        j["hash_b"] = hash_text(rep.hash_b);
         if (rep.located) {
           if (rep.method != "snapshot") j["located_tick"] = rep.located_tick;
           j["difference"] = difference_json(rep.difference);
@@ -528,11 +526,11 @@ int run_sync(const SyncArgs& a, const GlobalOptions& g) {
     if (!rep.passed) {
       j["first_mismatch_tick"] = rep.first_mismatch_tick;
       j["detected_at_tick"] = rep.detected_at_tick;
-      j["expected_hash"] = hex64(rep.expected_hash);
-      j["actual_hash"] = hex64(rep.actual_hash);
+      j["expected_hash"] = hash_text(rep.expected_hash);
+      j["actual_hash"] = hash_text(rep.actual_hash);
       if (rep.difference.differs) j["difference"] = difference_json(rep.difference);
     }
-    j["final_hash"] = hex64(world_state_hash(s.built.world));
+    j["final_hash"] = hash_text(world_state_hash(s.built.world));
     std::printf("%s\n", j.dump().c_str());
     return rep.passed ? 0 : 1;
   }

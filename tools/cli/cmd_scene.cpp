@@ -40,12 +40,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string hex64(uint64_t v) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "0x%016" PRIx64, v);
-  return buf;
-}
-
 // A hash of the bodies and shapes only (world_body_hashes folded in index
 // order), without the world's settings: equal for runs that differ only in
 // settings that must not change results, such as the broad phase.
@@ -84,7 +78,7 @@ std::string json_escape(const std::string& s) {
 }
 
 // A scene loaded, its broad phase chosen, and built; prints errors itself.
-struct Session {
+struct SceneRun {
   scene::Scene scene;
   scene::BuiltScene built;
   bool from_replay = false;  // render only: the world comes from a replay file
@@ -94,13 +88,13 @@ struct Session {
   std::vector<double> step_seconds;
   bool profiling = false;               // run --profile: record world_profile() after every timed step
   bench::ProfileSeries profile;
-  ~Session() {
+  ~SceneRun() {
     if (!is_null(built.world)) (void)destroy_world(built.world);
   }
 };
 
 int open_session(const std::string& command, const std::string& path, const std::string& broad_phase,
-                 const scene::SceneLimits& limits, Session* s) {
+                 const scene::SceneLimits& limits, SceneRun* s) {
   Result<scene::Scene> loaded = scene::load_scene_file(path, limits);
   if (!loaded.ok()) {
     std::fprintf(stderr, "tandem %s: %s\n", command.c_str(), loaded.status.message.c_str());
@@ -121,7 +115,7 @@ int open_session(const std::string& command, const std::string& path, const std:
 }
 
 // Applies the inputs of the current tick and steps once; prints errors itself.
-int step_once(const std::string& command, Session* s, bool timed) {
+int step_once(const std::string& command, SceneRun* s, bool timed) {
   if (s->from_replay) {
     if (s->tick >= s->replay.tick_count()) {
       std::fprintf(stderr, "tandem %s: %s: the replay ends at tick %" PRId64 "\n", command.c_str(), s->scene.name.c_str(),
@@ -169,7 +163,7 @@ struct RunArgs {
 
 int run_run(const RunArgs& a, const GlobalOptions& g) {
   const bool json = a.json || g.json, quiet = a.quiet || g.quiet;
-  Session s;
+  SceneRun s;
   if (int rc = open_session("run", a.scene, a.broad_phase, g.scene_limits, &s)) return rc;
   s.profiling = a.profile;
   const int64_t ticks = a.ticks >= 0 ? a.ticks : s.scene.ticks;
@@ -206,11 +200,11 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
                 json_escape(s.scene.name).c_str(), ticks, s.scene.step_hz, broad_phase_name(s.scene.world.broad_phase),
                 counters.body_count, counters.shape_count);
     for (size_t i = 0; i < marks.size(); ++i)
-      std::printf("%s{\"tick\": %" PRId64 ", \"hash\": \"%s\"}", i ? ", " : "", marks[i].tick, hex64(marks[i].hash).c_str());
+      std::printf("%s{\"tick\": %" PRId64 ", \"hash\": \"%s\"}", i ? ", " : "", marks[i].tick, hash_text(marks[i].hash).c_str());
     std::printf("],\n \"final_tick\": %" PRId64 ", \"final_hash\": \"%s\", \"bodies_hash\": \"%s\", "
                 "\"body_left_bounds\": %s,\n"
                 " \"step_ms\": {\"median\": %.6f, \"mean\": %.6f, \"max\": %.6f}, \"wall_s\": %.6f",
-                ticks, hex64(final_hash).c_str(), hex64(bodies_hash(s.built.world)).c_str(), left_bounds ? "true" : "false",
+                ticks, hash_text(final_hash).c_str(), hash_text(bodies_hash(s.built.world)).c_str(), left_bounds ? "true" : "false",
                 median_ms, mean_ms, max_ms, wall);
     if (a.profile) std::printf(",\n \"profile\": %s", bench::profile_json(s.profile.stats()).c_str());
     std::printf("}\n");
@@ -220,7 +214,7 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
     std::printf("scene %s: %d bodies, %d shapes; %" PRId64 " ticks of 1/%d s; broad phase %s\n", s.scene.name.c_str(),
                 counters.body_count, shape_total(s.built.world), ticks, s.scene.step_hz,
                 broad_phase_name(s.scene.world.broad_phase));
-    for (const Mark& m : marks) std::printf("tick %8" PRId64 "  hash %s\n", m.tick, hex64(m.hash).c_str());
+    for (const Mark& m : marks) std::printf("tick %8" PRId64 "  hash %s\n", m.tick, hash_text(m.hash).c_str());
     std::printf("step time: median %.3f ms, mean %.3f ms, max %.3f ms (%.2f s in all)\n", median_ms, mean_ms, max_ms, total);
     if (left_bounds) std::printf("note: a body left the world bounds and was disabled\n");
     if (a.profile) {
@@ -228,9 +222,9 @@ int run_run(const RunArgs& a, const GlobalOptions& g) {
                   bench::profile_table(s.profile.stats()).c_str());
     }
     std::printf("bodies hash %s (bodies and shapes only: the same for every broad phase)\n",
-                hex64(bodies_hash(s.built.world)).c_str());
+                hash_text(bodies_hash(s.built.world)).c_str());
   }
-  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hex64(final_hash).c_str());
+  std::printf("final tick %" PRId64 "  hash %s\n", ticks, hash_text(final_hash).c_str());
   return 0;
 }
 
@@ -271,7 +265,7 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
   }
   options.aabbs = a.aabbs;
   options.contacts = a.contacts;
-  Session s;
+  SceneRun s;
   std::vector<uint8_t> bytes;
   if (read_file_bytes(a.scene, &bytes).ok() && is_replay_image(bytes)) {
     // A replay file: start from its tick-0 keyframe and play its ticks.
@@ -327,7 +321,7 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
       char name[64];
       std::snprintf(name, sizeof name, "-%06" PRId64, s.tick);
       const std::string base = (std::filesystem::path(a.out_dir) / (stem + name)).string();
-      options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hex64(world_state_hash(s.built.world));
+      options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hash_text(world_state_hash(s.built.world));
       if (png) {
         const std::string err = render::render_png(s.built.world, view, options, base + ".png");
         if (!err.empty()) return std::fprintf(stderr, "tandem render: %s\n", err.c_str()), 2;
@@ -355,7 +349,7 @@ int run_render(const RenderArgs& a, const GlobalOptions& g) {
   }
   if (json) {
     std::printf("{\"scene\": \"%s\", \"final_tick\": %" PRId64 ", \"final_hash\": \"%s\", \"files\": [",
-                json_escape(s.scene.name).c_str(), s.tick, hex64(world_state_hash(s.built.world)).c_str());
+                json_escape(s.scene.name).c_str(), s.tick, hash_text(world_state_hash(s.built.world)).c_str());
     for (size_t i = 0; i < written.size(); ++i) std::printf("%s\"%s\"", i ? ", " : "", json_escape(written[i]).c_str());
     std::printf("]}\n");
   } else if (!quiet) {
@@ -382,7 +376,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
     const std::string relative = std::filesystem::proximate(path, ec).string();
     if (!ec && relative.rfind("..", 0) != 0) path = relative;
   }
-  Session s;
+  SceneRun s;
   if (int rc = open_session("demo", path, "", g.scene_limits, &s)) return rc;
   if (!(a.seconds > 0 && a.seconds <= 3600)) {
     std::fprintf(stderr, "tandem demo: --seconds: expected a number in (0, 3600]\n");
@@ -447,7 +441,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
               "  and the state hash after every tick\n",
               ticks, static_cast<double>(ticks) / s.scene.step_hz, s.scene.step_hz, wall,
               sorted.empty() ? 0.0 : sorted[sorted.size() / 2] * 1e3);
-  std::printf("  final state hash (XXH3-64 of the canonical state): %s\n", hex64(hash).c_str());
+  std::printf("  final state hash (XXH3-64 of the canonical state): %s\n", hash_text(hash).c_str());
 
   // 2. Verify: read the replay back and re-simulate it from its keyframes.
   Replay replay;
@@ -466,7 +460,7 @@ int run_demo(const DemoArgs& a, const GlobalOptions& g) {
   // 3. Draw the final state and the contact sheet.
   const std::string picture = (std::filesystem::path(a.out_dir) / (stem + "-final.png")).string();
   const std::string sheet_path = (std::filesystem::path(a.out_dir) / (stem + "-sheet.png")).string();
-  options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hex64(hash);
+  options.caption = stem + "  tick " + std::to_string(s.tick) + "  " + hash_text(hash);
   options.width = 1000, options.height = 750;
   // Framed on where the bodies ended up, within the scene's view.
   render::View final_view = render::fit_view(s.built.world);
