@@ -6,6 +6,7 @@
 // quoted in the README's "Range and limits" table, at the precision asserted.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -197,6 +198,84 @@ TEST_CASE("limits: 1:100,000 impacts at 10 and 100 m/s: both end side by side, n
     CHECK(std::fabs(ld(body_world_center(light).x - body_world_center(heavy).x)) > 0.99L);
   }
   CHECK(faults.count() == 0);
+}
+
+// One heavy-on-light impact: a 1 m box of `heavy` kg thrown down at `speed`
+// m/s from 3 m onto a 1 m box of `light` kg resting on a 40 m wide, 2 m thick
+// static ground (top face at y = 0); 600 steps. What the range table quotes.
+struct ImpactRun {
+  long double lowest_light = 1e9L, highest = 0, widest = 0;  // centres, m
+  long double final_light = 0, final_heavy = 0, final_speed = 0;
+};
+ImpactRun impact(Q32 heavy_kg, Q32 light_kg, Q32 speed) {
+  TestWorld w;
+  static_box(w.id, Vec2{0_q32, -1_q32}, 20_q32, 1_q32);
+  const BodyId light = dynamic_box(w.id, Vec2{0_q32, 0.5_q32}, 0.5_q32, 0.5_q32, light_kg);
+  const BodyId heavy = dynamic_box(w.id, Vec2{0_q32, 3_q32}, 0.5_q32, 0.5_q32, heavy_kg);
+  REQUIRE(body_set_linear_velocity(heavy, Vec2{0_q32, -speed}).ok());
+  ImpactRun r;
+  for (int t = 0; t < 600; ++t) {
+    REQUIRE(world_step(w.id, k_dt).ok());
+    const Vec2 pl = body_world_center(light), ph = body_world_center(heavy);
+    r.lowest_light = std::min(r.lowest_light, ld(pl.y));
+    r.highest = std::max({r.highest, ld(pl.y), ld(ph.y)});
+    r.widest = std::max({r.widest, ld(abs(pl.x)), ld(abs(ph.x))});
+  }
+  r.final_light = ld(body_world_center(light).y);
+  r.final_heavy = ld(body_world_center(heavy).y);
+  for (BodyId b : {light, heavy})
+    r.final_speed = std::max({r.final_speed, ld(abs(body_linear_velocity(b).x)), ld(abs(body_linear_velocity(b).y))});
+  return r;
+}
+
+TEST_CASE("limits: heavy-on-light impacts at 5 to 40 m/s, mass ratios 1:1 to 1:100,000: the pair stays on the ground and "
+          "comes to rest on it, no fault",
+          "[stress][limits]") {
+  FaultCount faults;
+  // Dynamic against dynamic there is no continuous collision (non-bullets):
+  // at these speeds the heavy box moves 0.08-0.67 m a step and may start a
+  // step deep inside the light one. The soft contact then separates them
+  // faster than max_contact_push_speed (the warm-started impulse of the
+  // impact, solved against the ground: measured 47 m/s at 1:10, 100 m/s), so
+  // the pair can be thrown up; what is asserted is that it stays over the
+  // ground, is not pushed through it and ends at rest on it. Measured
+  // 2026-11-28: lowest light centre -0.295 m (1:100,000 at 15 m/s), highest
+  // centre 21.14 m (1:10 at 40 m/s), widest 15.18 m (1:10 at 40 m/s).
+  const Q32 ratios[] = {1_q32, 10_q32, 100_q32, 1000_q32, 100000_q32};
+  for (const Q32 heavy : ratios) {
+    for (int v = 5; v <= 40; v += 5) {
+      const ImpactRun r = impact(heavy, 1_q32, Q32::from_int(v));
+      INFO(heavy.to_double() << " kg onto 1 kg at " << v << " m/s: lowest light " << static_cast<double>(r.lowest_light)
+                             << ", highest " << static_cast<double>(r.highest) << ", widest "
+                             << static_cast<double>(r.widest) << ", final light " << static_cast<double>(r.final_light)
+                             << ", heavy " << static_cast<double>(r.final_heavy));
+      CHECK(r.lowest_light > -0.35L);  // pressed at most 0.85 m into the 2 m ground
+      CHECK(r.highest < 22.0L);
+      CHECK(r.widest < 16.0L);  // over the ground (half width 20 m) all the time
+      // At rest on the ground: the light box within 0.01 m of 0.5; the heavy
+      // one beside it (0.5) or on it (1.5; above 1:100 the mass-ratio cap
+      // leaves the pair overlapping by 0.034-0.043 m: 1.457 here).
+      CHECK(r.final_speed < 0.01L);
+      CHECK(r.final_light == Approx(0.5L).margin(0.01L));
+      const bool beside = std::fabs(r.final_heavy - 0.5L) < 0.01L;
+      const bool on_top = r.final_heavy > 1.45L && r.final_heavy < 1.51L;
+      CHECK((beside || on_top));
+    }
+  }
+  CHECK(faults.count() == 0);
+}
+
+// Known issue (2026-11-28, README range table): from 45 m/s some impacts
+// throw the pair sideways off the 40 m ground and it falls past its edge
+// (measured in 300 steps: 1:100 at 45, 50, 55, 90 and 100 m/s, 1:10 at 45 and
+// 50 m/s). Hidden: it passes while the issue stands and fails once the pair
+// stays on the ground.
+TEST_CASE("known issue 6: a 100 kg box at 100 m/s onto a 1 kg box throws both off a 40 m ground", "[.][known-issue][stress]") {
+  const ImpactRun r = impact(100_q32, 1_q32, 100_q32);
+  std::printf("known issue 6: widest %.2Lf m, final light %.3Lf m, heavy %.3Lf m\n", r.widest, r.final_light,
+              r.final_heavy);
+  CHECK(r.widest > 20.0L);
+  CHECK(r.final_light < -1.0L);
 }
 
 TEST_CASE("limits: bodies at the mass, inertia and size limits, no fault", "[stress][limits]") {
