@@ -91,6 +91,26 @@ TEST_CASE("known issue 1: fast bodies go through 1 m walls after a spinning impa
   }
 }
 
+// KNOWN ISSUE 7 (found by the 10,000-world sanitizer run of 2026-11-28):
+// seed 8724, a slow world. A 1 kg body whose only solid shape is a 4.1 m
+// segment (no rotational inertia), spinning at 59 rad/s and moving at 229 m/s
+// along a side wall it touches, is held in place by continuous collision for
+// 26 steps (ticks 286-311): the hold (continuous.cpp) removes only the
+// velocity towards the wall, so every step starts touching again; at tick 312
+// it leaves the hold and its segment passes the wall's middle. Seed 1104's
+// case with the velocity along the wall instead of into it. Hidden: it fails
+// while the issue stands.
+TEST_CASE("known issue 7: a spinning segment body sliding along a wall at 229 m/s leaves the container (stress seed "
+          "8724)",
+          "[.][known-issue][stress]") {
+  StressConfig config;
+  config.seed = 8724;
+  config.ticks = 600;
+  const StressResult r = tandem::stress::run_stress_world(config);
+  INFO(tandem::stress::describe(8724, r));
+  CHECK(r.ok());
+}
+
 // Formerly KNOWN ISSUE 2: a dynamic body carrying one-sided chain segments
 // that rests against a static box sank into the box at about the contact
 // push speed (3 m/s, while its velocity read zero) and came out beyond it, in
