@@ -28,7 +28,12 @@
 // a shape no thicker than about the slop, such as a 5 mm circle or a
 // segment, resting on it — the core stops halfway to the obstacle instead
 // (time_of_impact_to), otherwise its sweep would report a hit at t = 0 and
-// stop nothing (formerly stress known issues 1 and 3). The body's end
+// stop nothing (formerly stress known issues 1 and 3), but never nearer than
+// k_hold_floor (a quarter of the slop); a centroid already within it is held
+// at the start pose's turn (stress seed 8724: halving the distance every
+// step brought a spinning segment's middle onto a wall's face in 26 steps,
+// where it could no longer be held, and the next step swung it through the
+// wall). The body's end
 // pose becomes the sweep at the smallest t found (if < 1); its velocity is
 // kept, so the next step's speculative contact makes the collision response.
 //
@@ -206,6 +211,10 @@ bool contact_can_take_over(const ShapeGeometry& geometry, Transform start, const
   return true;
 }
 
+/// The closest a held centroid is let come to its obstacle, m (a hold stops
+/// it halfway to the obstacle, but never nearer than this; see first_impact).
+constexpr Q32 k_hold_floor = k_linear_slop / 4;
+
 /// A body's first impact in its sweep.
 struct Impact {
   Q32 fraction = Q32::one();  ///< of the sweep, (0, 1]; 1: no impact
@@ -283,13 +292,21 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
           din.transform_b = sweep_transform(input.sweep_b, Q32::zero());
           din.use_radii = false;
           const DistanceOutput held = shape_distance(din);
-          if (held.distance > Q32::zero()) {
-            out = time_of_impact_to(input, held.distance / 2);
+          if (held.distance > k_hold_floor) {
+            out = time_of_impact_to(input, max(held.distance / 2, k_hold_floor));
+            hold_normal = held.normal;
+          } else if (held.distance > Q32::zero()) {
+            // Within the floor: halving again would bring the centroid to
+            // the obstacle within a few dozen steps, and a centroid on it
+            // can no longer be held (stress seed 8724). Hold it where it is.
+            out.state = ToiState::hit;
+            out.fraction = Q32::zero();
             hold_normal = held.normal;
           }
         }
       }
-      if ((out.state == ToiState::hit || out.state == ToiState::failed) && out.fraction > Q32::zero() &&
+      const bool hold = hold_normal != Vec2{};
+      if ((out.state == ToiState::hit || out.state == ToiState::failed) && (out.fraction > Q32::zero() || hold) &&
           out.fraction < best.fraction) {
         best.fraction = out.fraction;
         best.hold_normal = hold_normal;
@@ -309,7 +326,9 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
 /// moving into it (a spin the linearised contact reads as separating: stress
 /// seed 1104, a 1 kg segment body with no rotational inertia spinning at
 /// 59 rad/s, held at a wall for 28 steps while keeping 155 m/s, then
-/// through it once its centroid was too close to be held halfway).
+/// through it once its centroid was too close to be held halfway). A hold
+/// at the floor (fraction 0) keeps only the velocity leaving the obstacle
+/// and moves the body by it (below).
 void move_to_impact(World* world, StepContext* context, int32_t i, const Impact& impact) {
   const BodySim& sim = world->body_sims[static_cast<size_t>(context->solver_to_body[i])];
   BodyState& state = context->states[i];
@@ -320,8 +339,21 @@ void move_to_impact(World* world, StepContext* context, int32_t i, const Impact&
   if (impact.hold_normal == Vec2{}) return;
   const int32_t other = context->body_to_solver[static_cast<size_t>(impact.hold_body)];
   const Vec2 other_velocity = other >= 0 ? context->states[other].linear_velocity : Vec2{};
-  const Q32 towards = dot(state.linear_velocity - other_velocity, impact.hold_normal);
-  if (towards > Q32::zero()) state.linear_velocity = state.linear_velocity - impact.hold_normal * towards;
+  const Vec2 relative = state.linear_velocity - other_velocity;
+  const Q32 towards = dot(relative, impact.hold_normal);
+  if (impact.fraction > Q32::zero()) {
+    if (towards > Q32::zero()) state.linear_velocity = state.linear_velocity - impact.hold_normal * towards;
+    return;
+  }
+  // Held at the floor (fraction 0: the centroid within k_hold_floor of the
+  // obstacle). Relative to the obstacle only the velocity leaving it along
+  // the normal is kept (the slide along it goes too: moving the body along
+  // the obstacle here would skip the search for other obstacles on the
+  // way), and the body moves with that velocity, its turn still stopped, so
+  // it follows a moving obstacle and can leave it instead of staying frozen
+  // at the start pose (stress seed 8724).
+  state.linear_velocity = other_velocity + impact.hold_normal * min(towards, Q32::zero());
+  state.center = state.center + state.linear_velocity * context->dt;
 }
 
 /// Fast bodies per block of the parallel sweeps (a sweep is a handful of

@@ -231,7 +231,8 @@ TEST_CASE("every broad phase gives the naive pair list in random scenes with edi
           CHECK(pair_keys(all[k]->id) == reference);
           const BroadPhaseStats stats = world_broad_phase_stats(all[k]->id);
           CHECK(stats.pairs == static_cast<int32_t>(reference.size()));
-          CHECK(stats.pairs <= stats.candidate_pairs);
+          // Pairs carried over between unchanged proxies were not tested again.
+          CHECK(stats.pairs - stats.pairs_carried <= stats.candidate_pairs);
         }
         if (step % 3 == 1) {
           for (int k = 0; k < 4; ++k) random_edit(all[k]->id, edits[k], half_extent);

@@ -122,3 +122,62 @@ TEST_CASE("stress: a light circle under a heavy falling box stays above the floo
   }
   CHECK(faults.count() == 0);
 }
+
+// Stress seed 8724 (the 10,000-world run's one failure): a 1 kg body whose
+// only solid shape is a 4.1 m segment (no rotational inertia), spinning at
+// 59 rad/s and sliding down a wall at 234 m/s with the segment along the
+// wall's face and its centre of mass 0.44 m inside the wall. Each step the
+// spin swung the segment into the wall; continuous collision held its
+// middle halfway to the face, step after step, with the body frozen in
+// place at 229 m/s (the hold took only the velocity into the wall), until
+// the middle was too close to the face to halve the distance again
+// (26 steps); then it was let go and swung through the wall's middle. Now a
+// hold comes no nearer than a quarter of the slop and, there, keeps the turn
+// stopped but moves the body with its velocity leaving the wall: the spin's
+// contact then pushes it off the wall.
+TEST_CASE("stress: a thin spinning body sliding along a wall is never let go through it by continuous collision",
+          "[stress][continuous]") {
+  FaultCount faults;
+  for (const bool bullet : {false, true}) {
+    TestWorld w;
+    // Wall: its face at x = 0, 3 m thick (middle at x = -1.5), 400 m tall.
+    static_box(w.id, Vec2{-1.5_q32, 0_q32}, 1.5_q32, 200_q32);
+    // Seed 8724's body one step before the hold began (tick 284, relative to
+    // the wall's face).
+    BodyDef bd = default_body_def();
+    bd.type = BodyType::dynamic_body;
+    bd.position = Vec2{-0.443749_q32, 150_q32};
+    bd.rotation = Rot{0.796806_q32, 0.604235_q32};
+    bd.is_bullet = bullet;
+    bd.linear_velocity = Vec2{-19.1991_q32, -233.7205_q32};
+    bd.angular_velocity = 58.9049_q32;
+    Result<BodyId> b = create_body(w.id, bd);
+    REQUIRE(b.ok());
+    const Segment segment{Vec2{0.161927_q32, -0.531205_q32}, Vec2{3.763054_q32, 1.658798_q32}};
+    REQUIRE(create_segment_shape(b.value, default_shape_def(), segment).ok());
+    REQUIRE(body_rotational_inertia(b.value) == 0_q32);
+    const Vec2 middle = (segment.point1 + segment.point2) * 0.5_q32;
+    long double leftmost = 1e9L;
+    int frozen = 0;
+    Vec2 last = body_world_center(b.value);
+    for (int t = 0; t < 60; ++t) {
+      REQUIRE(world_step(w.id, k_dt).ok());
+      const Vec2 mid = body_world_point(b.value, middle);
+      leftmost = std::min(leftmost, static_cast<long double>(mid.x.to_double()));
+      // In place while its velocity says it slides at over 50 m/s.
+      const Vec2 now = body_world_center(b.value);
+      if (length(now - last) < 0.01_q32 && length(body_linear_velocity(b.value)) > 50_q32) ++frozen;
+      last = now;
+    }
+    std::printf("sliding along a wall (bullet %d): leftmost segment middle x = %.4Lf m (wall face 0, middle -1.5); "
+                "steps frozen in place while moving faster than 50 m/s: %d\n",
+                bullet ? 1 : 0, leftmost, frozen);
+    INFO("bullet " << bullet);
+    CHECK(leftmost > -1.5L);  // never past the wall's middle
+    // A held body does not keep a speed it does not move at for more than
+    // the halvings from the slop (where a hold starts) to the floor, a
+    // quarter of it: two steps, and the step that starts the hold.
+    CHECK(frozen <= 3);
+  }
+  CHECK(faults.count() == 0);
+}
