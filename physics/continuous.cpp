@@ -28,10 +28,10 @@
 // a shape no thicker than about the slop, such as a 5 mm circle or a
 // segment, resting on it — the core stops halfway to the obstacle instead
 // (time_of_impact_to), otherwise its sweep would report a hit at t = 0 and
-// stop nothing (formerly stress known issues 1 and 3), but never nearer than
-// k_hold_floor (a quarter of the slop); a centroid already within it is held
-// at the start pose's turn (stress seed 8724: halving the distance every
-// step brought a spinning segment's middle onto a wall's face in 26 steps,
+// stop nothing (formerly stress known issues 1 and 3); one held within
+// k_hold_floor (half the slop) of the obstacle also loses its spin relative
+// to it (stress seed 8724: a spinning segment body with no rotational
+// inertia, halved nearer a wall every step, reached its face in 26 steps,
 // where it could no longer be held, and the next step swung it through the
 // wall). The body's end
 // pose becomes the sweep at the smallest t found (if < 1); its velocity is
@@ -211,9 +211,9 @@ bool contact_can_take_over(const ShapeGeometry& geometry, Transform start, const
   return true;
 }
 
-/// The closest a held centroid is let come to its obstacle, m (a hold stops
-/// it halfway to the obstacle, but never nearer than this; see first_impact).
-constexpr Q32 k_hold_floor = k_linear_slop / 4;
+/// A hold of a centroid nearer its obstacle than this, m, also takes the
+/// body's spin relative to the obstacle (first_impact, move_to_impact).
+constexpr Q32 k_hold_floor = k_linear_slop / 2;
 
 /// A body's first impact in its sweep.
 struct Impact {
@@ -223,6 +223,8 @@ struct Impact {
   Vec2 hold_normal;
   /// The obstacle's body (hold only), for its velocity.
   int32_t hold_body = k_null_index;
+  /// A hold of a centroid within k_hold_floor of the obstacle.
+  bool at_floor = false;
 };
 
 /// Sweeps the body of solver index i against `candidates` (each held at its
@@ -264,6 +266,7 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
       input.max_fraction = best.fraction;
       ToiOutput out = time_of_impact(input);
       Vec2 hold_normal;
+      bool at_floor = false;
       if (out.fraction == Q32::zero() || out.state == ToiState::overlapped) {
         // Touching at the start (typically: stopped here by the previous
         // step's sweep). The contact solver owns that contact, but a fast
@@ -292,16 +295,14 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
           din.transform_b = sweep_transform(input.sweep_b, Q32::zero());
           din.use_radii = false;
           const DistanceOutput held = shape_distance(din);
-          if (held.distance > k_hold_floor) {
-            out = time_of_impact_to(input, max(held.distance / 2, k_hold_floor));
+          if (held.distance > Q32::zero()) {
+            out = time_of_impact_to(input, held.distance / 2);
             hold_normal = held.normal;
-          } else if (held.distance > Q32::zero()) {
-            // Within the floor: halving again would bring the centroid to
-            // the obstacle within a few dozen steps, and a centroid on it
-            // can no longer be held (stress seed 8724). Hold it where it is.
-            out.state = ToiState::hit;
-            out.fraction = Q32::zero();
-            hold_normal = held.normal;
+            // Near the obstacle: a hold here also takes the body's spin
+            // (move_to_impact), or halving step after step brings the
+            // centroid onto the obstacle, where it can no longer be held
+            // (stress seed 8724).
+            at_floor = held.distance <= k_hold_floor;
           }
         }
       }
@@ -311,6 +312,7 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
         best.fraction = out.fraction;
         best.hold_normal = hold_normal;
         best.hold_body = other.body_index;
+        best.at_floor = at_floor;
       }
     }
   }
@@ -327,8 +329,8 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
 /// seed 1104, a 1 kg segment body with no rotational inertia spinning at
 /// 59 rad/s, held at a wall for 28 steps while keeping 155 m/s, then
 /// through it once its centroid was too close to be held halfway). A hold
-/// at the floor (fraction 0) keeps only the velocity leaving the obstacle
-/// and moves the body by it (below).
+/// at the floor also takes away the body's spin relative to the obstacle
+/// (below).
 void move_to_impact(World* world, StepContext* context, int32_t i, const Impact& impact) {
   const BodySim& sim = world->body_sims[static_cast<size_t>(context->solver_to_body[i])];
   BodyState& state = context->states[i];
@@ -341,19 +343,16 @@ void move_to_impact(World* world, StepContext* context, int32_t i, const Impact&
   const Vec2 other_velocity = other >= 0 ? context->states[other].linear_velocity : Vec2{};
   const Vec2 relative = state.linear_velocity - other_velocity;
   const Q32 towards = dot(relative, impact.hold_normal);
-  if (impact.fraction > Q32::zero()) {
-    if (towards > Q32::zero()) state.linear_velocity = state.linear_velocity - impact.hold_normal * towards;
-    return;
-  }
-  // Held at the floor (fraction 0: the centroid within k_hold_floor of the
-  // obstacle). Relative to the obstacle only the velocity leaving it along
-  // the normal is kept (the slide along it goes too: moving the body along
-  // the obstacle here would skip the search for other obstacles on the
-  // way), and the body moves with that velocity, its turn still stopped, so
-  // it follows a moving obstacle and can leave it instead of staying frozen
-  // at the start pose (stress seed 8724).
-  state.linear_velocity = other_velocity + impact.hold_normal * min(towards, Q32::zero());
-  state.center = state.center + state.linear_velocity * context->dt;
+  if (towards > Q32::zero()) state.linear_velocity = state.linear_velocity - impact.hold_normal * towards;
+  if (!impact.at_floor) return;
+  // Held at the floor: the turn that keeps bringing the centroid back to the
+  // obstacle goes too (the body takes the obstacle's angular velocity), so
+  // the next step's sweep is the body's translation, which a body leaving
+  // the obstacle or sliding along it makes freely. Without it, a spinning
+  // body with no rotational inertia (whose spin no contact changes, and
+  // which holds no energy) stayed held in place step after step while its
+  // velocity said it was leaving (stress seed 8724).
+  state.angular_velocity = other >= 0 ? context->states[other].angular_velocity : Q32::zero();
 }
 
 /// Fast bodies per block of the parallel sweeps (a sweep is a handful of

@@ -132,9 +132,8 @@ TEST_CASE("stress: a light circle under a heavy falling box stays above the floo
 // place at 229 m/s (the hold took only the velocity into the wall), until
 // the middle was too close to the face to halve the distance again
 // (26 steps); then it was let go and swung through the wall's middle. Now a
-// hold comes no nearer than a quarter of the slop and, there, keeps the turn
-// stopped but moves the body with its velocity leaving the wall: the spin's
-// contact then pushes it off the wall.
+// hold within half the slop of the wall also takes the body's spin, and the
+// body slides down along the wall.
 TEST_CASE("stress: a thin spinning body sliding along a wall is never let go through it by continuous collision",
           "[stress][continuous]") {
   FaultCount faults;
@@ -175,8 +174,8 @@ TEST_CASE("stress: a thin spinning body sliding along a wall is never let go thr
     INFO("bullet " << bullet);
     CHECK(leftmost > -1.5L);  // never past the wall's middle
     // A held body does not keep a speed it does not move at for more than
-    // the halvings from the slop (where a hold starts) to the floor, a
-    // quarter of it: two steps, and the step that starts the hold.
+    // the holds that halve its distance from the slop (where a hold starts)
+    // to half of it, where the hold takes its spin: three steps.
     CHECK(frozen <= 3);
   }
   CHECK(faults.count() == 0);
