@@ -22,6 +22,24 @@ using namespace tandem::stress_edges;
 
 const Q32 k_dt = Q32::from_ratio(1, 60);
 
+/// A dynamic body (a bullet or not) whose only shape is `segment`: no area,
+/// so the default 1 kg and no rotational inertia, as in the stress seeds
+/// below.
+BodyId segment_body(WorldId w, Vec2 position, Rot rotation, bool bullet, Vec2 velocity, Q32 spin,
+                    const Segment& segment) {
+  BodyDef bd = default_body_def();
+  bd.type = BodyType::dynamic_body;
+  bd.position = position;
+  bd.rotation = rotation;
+  bd.is_bullet = bullet;
+  bd.linear_velocity = velocity;
+  bd.angular_velocity = spin;
+  Result<BodyId> b = create_body(w, bd);
+  REQUIRE(b.ok());
+  REQUIRE(create_segment_shape(b.value, default_shape_def(), segment).ok());
+  REQUIRE(body_rotational_inertia(b.value) == 0_q32);
+  return b.value;
+}
 
 }  // namespace
 
@@ -46,27 +64,18 @@ TEST_CASE("stress: a thin spinning body held at a wall by continuous collision d
     // end 0.02 m into it, the other 0.03 m from it (outside the contact's
     // speculative distance), moving into the wall at 116 m/s while the spin
     // carries the touching end away from it.
-    BodyDef bd = default_body_def();
-    bd.type = BodyType::dynamic_body;
-    bd.position = Vec2{0.03546_q32, 0_q32};
-    bd.rotation = Rot{0.170895_q32, 0.985289_q32};
-    bd.is_bullet = bullet;
-    bd.linear_velocity = Vec2{-115.61_q32, 106.45_q32};
-    bd.angular_velocity = -58.9049_q32;
-    Result<BodyId> b = create_body(w.id, bd);
-    REQUIRE(b.ok());
     const Segment segment{Vec2{1.94591_q32, 0.39351_q32}, Vec2{-1.27520_q32, -0.21637_q32}};
-    REQUIRE(create_segment_shape(b.value, default_shape_def(), segment).ok());
-    REQUIRE(body_mass(b.value) == 1_q32);
-    REQUIRE(body_rotational_inertia(b.value) == 0_q32);
+    const BodyId body = segment_body(w.id, Vec2{0.03546_q32, 0_q32}, Rot{0.170895_q32, 0.985289_q32}, bullet,
+                                     Vec2{-115.61_q32, 106.45_q32}, -58.9049_q32, segment);
+    REQUIRE(body_mass(body) == 1_q32);
     const Vec2 middle = (segment.point1 + segment.point2) * 0.5_q32;
     long double leftmost = 1e9L;
     int held = 0;
     for (int t = 0; t < 60; ++t) {
       REQUIRE(world_step(w.id, k_dt).ok());
-      const Vec2 mid = body_world_point(b.value, middle);
+      const Vec2 mid = body_world_point(body, middle);
       leftmost = std::min(leftmost, static_cast<long double>(mid.x.to_double()));
-      if (mid.x < 2_q32 && body_linear_velocity(b.value).x < -50_q32) ++held;
+      if (mid.x < 2_q32 && body_linear_velocity(body).x < -50_q32) ++held;
     }
     std::printf("held at a wall (bullet %d): leftmost segment middle x = %.4Lf m (wall face 0, middle -1.5); steps "
                 "within 2 m of the wall still moving into it faster than 50 m/s: %d\n",
@@ -143,29 +152,20 @@ TEST_CASE("stress: a thin spinning body sliding along a wall is never let go thr
     static_box(w.id, Vec2{-1.5_q32, 0_q32}, 1.5_q32, 200_q32);
     // Seed 8724's body one step before the hold began (tick 284, relative to
     // the wall's face).
-    BodyDef bd = default_body_def();
-    bd.type = BodyType::dynamic_body;
-    bd.position = Vec2{-0.443749_q32, 150_q32};
-    bd.rotation = Rot{0.796806_q32, 0.604235_q32};
-    bd.is_bullet = bullet;
-    bd.linear_velocity = Vec2{-19.1991_q32, -233.7205_q32};
-    bd.angular_velocity = 58.9049_q32;
-    Result<BodyId> b = create_body(w.id, bd);
-    REQUIRE(b.ok());
     const Segment segment{Vec2{0.161927_q32, -0.531205_q32}, Vec2{3.763054_q32, 1.658798_q32}};
-    REQUIRE(create_segment_shape(b.value, default_shape_def(), segment).ok());
-    REQUIRE(body_rotational_inertia(b.value) == 0_q32);
+    const BodyId body = segment_body(w.id, Vec2{-0.443749_q32, 150_q32}, Rot{0.796806_q32, 0.604235_q32}, bullet,
+                                     Vec2{-19.1991_q32, -233.7205_q32}, 58.9049_q32, segment);
     const Vec2 middle = (segment.point1 + segment.point2) * 0.5_q32;
     long double leftmost = 1e9L;
     int frozen = 0;
-    Vec2 last = body_world_center(b.value);
+    Vec2 last = body_world_center(body);
     for (int t = 0; t < 60; ++t) {
       REQUIRE(world_step(w.id, k_dt).ok());
-      const Vec2 mid = body_world_point(b.value, middle);
+      const Vec2 mid = body_world_point(body, middle);
       leftmost = std::min(leftmost, static_cast<long double>(mid.x.to_double()));
       // In place while its velocity says it slides at over 50 m/s.
-      const Vec2 now = body_world_center(b.value);
-      if (length(now - last) < 0.01_q32 && length(body_linear_velocity(b.value)) > 50_q32) ++frozen;
+      const Vec2 now = body_world_center(body);
+      if (length(now - last) < 0.01_q32 && length(body_linear_velocity(body)) > 50_q32) ++frozen;
       last = now;
     }
     std::printf("sliding along a wall (bullet %d): leftmost segment middle x = %.4Lf m (wall face 0, middle -1.5); "
