@@ -104,11 +104,11 @@ TEST_CASE("the README session example runs as written", "[replay][session][readm
   for (readme::Peer& peer : peers) (void)destroy_world(peer.world);
 
   // The README holds the same block.
-  std::ifstream readme_file(std::string(TANDEM_SESSION_SOURCE_DIR) + "/README.md");
+  std::ifstream readme_file(TANDEM_SESSION_SOURCE_DIR "/README.md");
   REQUIRE(readme_file.good());
   std::stringstream text;
   text << readme_file.rdbuf();
-  std::ifstream self(std::string(TANDEM_SESSION_SOURCE_DIR) + "/tests/replay/test_session_readme.cpp");
+  std::ifstream self(TANDEM_SESSION_SOURCE_DIR "/tests/replay/test_session_readme.cpp");
   std::stringstream me;
   me << self.rdbuf();
   const std::string src = me.str();
