@@ -33,16 +33,18 @@
 // to it (stress seed 8724: a spinning segment body with no rotational
 // inertia, halved nearer a wall every step, reached its face in 26 steps,
 // where it could no longer be held, and the next step swung it through the
-// wall). The body's end
+// wall). A centroid that starts inside a polygon obstacle (a segment resting
+// on a floor sinks by up to the slop) has no distance to halve: it is held
+// where it would sink k_hold_floor deeper behind the face it is least deep
+// behind (inside_hold; stress seeds 3769, 6309). The body's end
 // pose becomes the sweep at the smallest t found (if < 1); its velocity is
 // kept, so the next step's speculative contact makes the collision response.
 //
 // LIMITS. Only the first impact of a step is found, and a shape that starts a
 // step touching an obstacle is left to the contact solver (only its centroid
-// core is swept); a centroid that starts inside the obstacle (a segment
-// resting on a floor sinks by up to the slop) is not held at all: flung into
-// the floor at hundreds of m/s it can pass through (stress seeds 3769, 6309,
-// counted as fast-world escapes). A thin body that hits at hundreds of m/s while spinning can
+// core is swept); a centroid that starts inside an obstacle that is not a
+// polygon (on a circle's centre, a capsule's or a segment's line) is not
+// held at all. A thin body that hits at hundreds of m/s while spinning can
 // be turned by a one-point contact so fast that its far end swings through a
 // thin obstacle within the next step (measured: a 1 m × 4 cm stick falling at
 // 200 m/s with 5–30 rad/s of spin through a 10 cm floor). Box2D 2.4 solves
@@ -218,6 +220,51 @@ bool contact_can_take_over(const ShapeGeometry& geometry, Transform start, const
 /// body's spin relative to the obstacle (first_impact, move_to_impact).
 constexpr Q32 k_hold_floor = k_linear_slop / 2;
 
+/// Bisection steps of inside_hold: the fraction to 1/65,536 of the sweep.
+constexpr int32_t k_inside_hold_steps = 16;
+
+/// A centroid `local` (body frame of `sweep`) that starts the step inside
+/// `polygon` (held at `xf`) has no distance, so no hold normal: take the face
+/// it is least deep behind (the first of equals) as the floor it rests on.
+/// Returns true, with the last fraction of the sweep at which the centroid
+/// is at most k_hold_floor deeper behind that face than at the start and the
+/// face's inward normal (body towards obstacle), when the sweep's end would
+/// be deeper than that (stress seeds 3769, 6309: a segment resting on the
+/// floor sinks by up to the slop, its middle inside the floor's face, and was
+/// flung through it at 400-1,000 m/s). The sweep turns the body, so the depth
+/// is not linear in the fraction: bisection, k_inside_hold_steps steps.
+bool inside_hold(const Sweep& sweep, Vec2 local, const Polygon& polygon, Transform xf, Q32* fraction,
+                 Vec2* normal) {
+  const Vec2 start = transform_point(sweep_transform(sweep, Q32::zero()), local);
+  const Vec2 p = inv_transform_point(xf, start);
+  int32_t face = 0;
+  Q32 depth = Q32::min();  // separation behind the face, m (≤ 0 inside)
+  for (int32_t k = 0; k < polygon.count; ++k) {
+    const Q32 separation = dot(polygon.normals[static_cast<size_t>(k)], p - polygon.vertices[static_cast<size_t>(k)]);
+    if (separation > depth) {
+      depth = separation;
+      face = k;
+    }
+  }
+  const Vec2 n = rotate(xf.q, polygon.normals[static_cast<size_t>(face)]);
+  const Vec2 v = transform_point(xf, polygon.vertices[static_cast<size_t>(face)]);
+  const Q32 floor = depth - k_hold_floor;
+  const auto separation_at = [&](Q32 t) { return dot(n, transform_point(sweep_transform(sweep, t), local) - v); };
+  if (separation_at(Q32::one()) >= floor) return false;
+  Q32 lo = Q32::zero(), hi = Q32::one();  // separation_at(lo) ≥ floor > separation_at(hi)
+  for (int32_t step = 0; step < k_inside_hold_steps; ++step) {
+    const Q32 mid = (lo + hi) * Q32::half();
+    if (separation_at(mid) >= floor) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  *fraction = lo;
+  *normal = -n;
+  return true;
+}
+
 /// A body's first impact in its sweep.
 struct Impact {
   Q32 fraction = Q32::one();  ///< of the sweep, (0, 1]; 1: no impact
@@ -306,6 +353,13 @@ Impact first_impact(const World* world, const StepContext* context, int32_t i, c
             // centroid onto the obstacle, where it can no longer be held
             // (stress seed 8724).
             at_floor = held.distance <= k_hold_floor;
+          } else if (other_geometry.type == ShapeType::polygon &&
+                     inside_hold(input.sweep_a, core.points[0], other_geometry.polygon, din.transform_b,
+                                 &out.fraction, &hold_normal)) {
+            // The centroid starts inside the obstacle: held where it would
+            // sink deeper than k_hold_floor below its start (inside_hold).
+            out.state = ToiState::hit;
+            at_floor = true;
           }
         }
       }

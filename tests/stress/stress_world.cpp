@@ -749,9 +749,11 @@ void run_pass(uint64_t seed, const WorldParams& p, const StressConfig& c, const 
         if (static_cast<int64_t>(t.id.index1) - 1 != trace_body() || !body_is_valid(t.id)) continue;
         const Vec2 rel = body_world_center(t.id) - p.center;
         const Vec2 v = body_linear_velocity(t.id);
-        std::printf("tick %d %s: centre (%.5f, %.5f) v (%.4f, %.4f) w %.4f awake %d\n", tick + 1, describe(t.id).c_str(),
-                    rel.x.to_double(), rel.y.to_double(), v.x.to_double(), v.y.to_double(),
-                    body_angular_velocity(t.id).to_double(), body_is_awake(t.id) ? 1 : 0);
+        const Rot q = body_rotation(t.id);
+        std::printf("tick %d %s: centre (%.5f, %.5f) rotation (c %.6f, s %.6f) v (%.4f, %.4f) w %.4f awake %d\n",
+                    tick + 1, describe(t.id).c_str(), rel.x.to_double(), rel.y.to_double(), q.c.to_double(),
+                    q.s.to_double(), v.x.to_double(), v.y.to_double(), body_angular_velocity(t.id).to_double(),
+                    body_is_awake(t.id) ? 1 : 0);
       }
     }
     if (spec.reference) {

@@ -1,4 +1,4 @@
-// The two failures of the random-world stress run of 2026-11-28 (issue 14),
+// Failures of the random-world stress runs of 2026-11-28 (issue 14),
 // rebuilt as small worlds so that each tests its cause, not one seed's
 // history: a thin spinning body that continuous collision held at a wall
 // while it kept its speed (stress seed 1104), and a light body between a
@@ -177,6 +177,73 @@ TEST_CASE("stress: a thin spinning body sliding along a wall is never let go thr
     // the holds that halve its distance from the slop (where a hold starts)
     // to half of it, where the hold takes its spin: three steps.
     CHECK(frozen <= 3);
+  }
+  CHECK(faults.count() == 0);
+}
+
+// Stress seeds 3769 and 6309 (the 10,000-world release run after the
+// seed-8724 fix): a segment body resting on the floor sinks by up to the
+// slop, so its middle starts the step inside the floor's box. An input then
+// flings it at 400-1,000 m/s into the floor or along it. The centroid core
+// had no distance to the floor, so no hold normal, and continuous collision
+// let the body go through (3769) or past the floor's corner (6309). Now the
+// middle is held where it would sink half the slop deeper behind the face
+// it rests on.
+TEST_CASE("stress: a segment resting inside the floor's face and flung into it stays above the floor's middle",
+          "[stress][continuous]") {
+  FaultCount faults;
+  struct Throw {
+    Segment segment;  // body frame (the origin is the centre of mass), m
+    Rot rotation;
+    Vec2 velocity;    // m/s
+    Q32 spin;         // rad/s
+  };
+  const Rot level{1_q32, 0_q32};
+  const Rot tilted{0.996195_q32, 0.087156_q32};  // 5 degrees
+  const Segment two_metres{Vec2{-1_q32, 0_q32}, Vec2{1_q32, 0_q32}};
+  // Seed 3769's body at tick 514: a 0.38 m segment below its origin, turned
+  // by -25.7 degrees (one end deep in the floor: contacts cannot turn it).
+  const Segment seed_3769{Vec2{-0.1771_q32, -0.0333_q32}, Vec2{0.2059_q32, -0.0333_q32}};
+  const Rot seed_3769_rotation{0.901049_q32, -0.433718_q32};
+  const Throw throws[] = {
+      {two_metres, level, Vec2{0_q32, -1000_q32}, 0_q32},
+      {two_metres, tilted, Vec2{0_q32, -400_q32}, 0_q32},
+      {two_metres, level, Vec2{300_q32, -700_q32}, 0_q32},
+      {two_metres, tilted, Vec2{-600_q32, -500_q32}, 20_q32},
+      {two_metres, level, Vec2{990_q32, -40_q32}, 0_q32},
+      {seed_3769, seed_3769_rotation, Vec2{-1000_q32, 0_q32}, 0_q32},
+      {seed_3769, seed_3769_rotation, Vec2{0_q32, -1000_q32}, 0_q32},
+      {seed_3769, seed_3769_rotation, Vec2{1000_q32, 0_q32}, 0_q32},
+  };
+  for (const bool bullet : {false, true}) {
+    for (const Throw& th : throws) {
+      WorldDef def = default_world_def();
+      def.max_linear_speed = k_max_linear_speed;  // 1,000 m/s, as in the stress seeds' fast worlds
+      TestWorld w(def);
+      // Floor: its face at y = 0, 3 m thick (middle at y = -1.5), 2,400 m
+      // wide (a body sliding at 1,000 m/s stays over it for the 60 steps).
+      static_box(w.id, Vec2{0_q32, -1.5_q32}, 1200_q32, 1.5_q32);
+      // The segment's middle 3 mm inside the floor's face, as a resting
+      // segment sinks.
+      const Vec2 middle = (th.segment.point1 + th.segment.point2) * 0.5_q32;
+      const Vec2 origin = Vec2{0_q32, -0.003_q32} - rotate(th.rotation, middle);
+      const BodyId body = segment_body(w.id, origin, th.rotation, bullet, th.velocity, th.spin, th.segment);
+      long double lowest = 1e9L;
+      for (int t = 0; t < 60; ++t) {
+        REQUIRE(world_step(w.id, k_dt).ok());
+        lowest = std::min(lowest, static_cast<long double>(body_world_point(body, middle).y.to_double()));
+      }
+      const Vec2 end = body_world_point(body, middle);
+      std::printf("%.3f m segment resting inside the floor's face (bullet %d), thrown at (%g, %g) m/s, %g rad/s: "
+                  "lowest middle %.4Lf m (face 0, floor middle -1.5), final (%.3f, %.4f)\n",
+                  length(th.segment.point2 - th.segment.point1).to_double(), bullet ? 1 : 0,
+                  th.velocity.x.to_double(), th.velocity.y.to_double(), th.spin.to_double(), lowest, end.x.to_double(),
+                  end.y.to_double());
+      INFO("bullet " << bullet << ", velocity (" << th.velocity.x.to_double() << ", " << th.velocity.y.to_double()
+                     << ")");
+      // Never deeper than the slop below its start (3 mm in + 5 mm).
+      CHECK(lowest > -0.008L);
+    }
   }
   CHECK(faults.count() == 0);
 }
