@@ -5,7 +5,8 @@
 #
 #   gcc-release      g++ 12, -O3; full accuracy samples; + install/consumer test
 #   clang-release    clang 14, -O3; fixed/ physics/ replay/ golden/ stress/ tests
-#   gcc-sanitize     g++, ASan + UBSan, no recovery, fault checks on
+#   gcc-sanitize     g++, ASan + UBSan, no recovery, fault checks on; the
+#                    same tests as clang-release
 #   clang-sanitize   clang, ASan + UBSan, no recovery, fault checks on
 #                    (the golden chains' variants are split between the two)
 #   portable-int128  g++ release on wide.h's portable 128-bit path; the same
@@ -45,7 +46,7 @@ builds=()
 for arg in "$@"; do
   case "$arg" in
     --clean) clean=1 ;;
-    -h|--help) sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,39p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
     *) builds+=("$arg") ;;
   esac
@@ -106,13 +107,17 @@ run_build() {
     fuzz)
       preset=clang-fuzz dir=build/clang-fuzz
       build_args=(--target tandem_fuzzers) ;;
-    # The two sanitizer builds share the golden chains' variants between
-    # them (the release builds run all of them): gcc-sanitize the
-    # broad-phase variants, clang-sanitize the worker, task-system and
-    # solver-path variants. Each sanitizer still runs every scene's chain,
-    # its restore and its compact rollback.
+    # The two sanitizer builds share out the work (the release builds run all
+    # of it): gcc-sanitize runs the engine's tests (as clang-release) with
+    # the golden chains' broad-phase variants; clang-sanitize runs every
+    # test but those variants, so the command line, C API and network code
+    # run under clang's ASan + UBSan, and the worker, task-system and
+    # solver-path variants of the chains too. Each sanitizer still runs
+    # every scene's chain, its restore and its compact rollback.
     gcc-sanitize)
-      ctest_args=(-E '^determinism lint|^golden/golden chain (with|through|on the) ') ;;
+      build_args=(--target tandem_tests_fixed tandem_tests_physics tandem_tests_replay
+                  tandem_tests_golden tandem_tests_stress tandem_stress tandem_soak)
+      ctest_args=(-R '^(fixed|physics|replay|golden|stress)/' -E '^golden/golden chain (with|through|on the) ') ;;
     clang-sanitize)
       ctest_args=(-E '^determinism lint|^golden/golden chain: [a-z_0-9]+, every broad phase$') ;;
     *) ctest_args=(-E '^determinism lint') ;;
