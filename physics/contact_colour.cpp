@@ -65,7 +65,7 @@ ConstraintJob* colour_contact_constraints(World* world, StepContext* context, in
       if (ma) colour_masks[ia] |= uint32_t{1} << colour;
       if (mb) colour_masks[ib] |= uint32_t{1} << colour;
     }
-    jobs[n++] = ConstraintJob{ci, ia, ib, colour};
+    jobs[n++] = ConstraintJob{ci, ia, ib, colour, -1};
     ++colour_start[colour + 1];
   });
   for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];

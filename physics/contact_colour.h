@@ -27,6 +27,7 @@ struct ConstraintJob {
   int32_t solver_a;  ///< solver index of body A, or k_null_index
   int32_t solver_b;  ///< solver index of body B, or k_null_index
   int32_t colour;    ///< 0 … k_contact_colour_count (the last: the overflow colour)
+  int32_t slot;      ///< the constraint's index in StepContext::constraints (set by the preparation)
 };
 
 /// Colours the `count` constraints prepare_contact_constraints will build

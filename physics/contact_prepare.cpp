@@ -13,9 +13,15 @@
 // and 22 stores. What the
 // per-contact part avoids: reading four per-body arrays (SolverBodyParams,
 // BodyState, BodySim, Body) per side and contact — a PrepBody record per
-// solver body is gathered at the body's first constraint of the step —
+// solver body that some constraint reads is gathered once per step —
 // and walking the awake index a third time: the colouring pass hands over
 // each constraint's contact and solver indices (ConstraintJob).
+//
+// Workers: the counting pass, the colouring and one short pass that gives
+// each constraint its slot and lists the bodies to gather run on the
+// stepping thread in contact order; gathering the records and building the
+// constraints run in blocks (task.h), each item writing only its own record
+// or constraint, so the bits do not depend on the worker count.
 // Rejected: gathering every solver body's record up front (a scene of many
 // bodies and few contacts, circles-16k: 16,000 bodies, 875 contacts, would
 // pay for all of them); dropping the counting pass (the constraint array,
@@ -213,6 +219,11 @@ struct PrepBody {
 /// PrepBody::has_box of a record not yet gathered this step.
 constexpr int32_t k_prep_body_unset = -1;
 
+/// Items per block of the parallel loops (fixed, task.h): solver bodies
+/// gathered, constraints built.
+constexpr int32_t k_prep_body_block = 128;
+constexpr int32_t k_prep_contact_block = 64;
+
 /// Gathers solver body `solver_index`'s record (see PrepBody).
 inline void gather_prep_body(const World& world, const StepContext& context, int32_t solver_index, PrepBody* out) {
   const int32_t body_index = context.solver_to_body[solver_index];
@@ -294,48 +305,60 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
   context->constraint_count = count;
   // Per solver body: the record of what the preparation reads of it
-  // (PrepBody), gathered at the body's first constraint of the step
-  // (k_prep_body_unset until then: a scene of many bodies and few contacts
-  // pays nothing for the others).
+  // (PrepBody), gathered only for the bodies some constraint reads
+  // (k_prep_body_unset for the others: a scene of many bodies and few
+  // contacts pays nothing for them).
   PrepBody* prep_bodies =
       arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
   for (int32_t i = 0; i < context->solver_body_count; ++i) {
     context->bounce_marks[i] = -1;
     prep_bodies[i].has_box = k_prep_body_unset;
   }
-  const auto prep_body = [world, context, prep_bodies](int32_t solver_index) -> const PrepBody& {
-    PrepBody& b = prep_bodies[solver_index];
-    if (b.has_box == k_prep_body_unset) gather_prep_body(*world, *context, solver_index, &b);
-    return b;
-  };
-
   // Graph colours (contact_colour.cpp): constraints are stored colour by
   // colour, in contact order within a colour. The colouring pass hands over
   // the constraints' contacts and solver indices (jobs, in contact order).
   int32_t colour_start[k_contact_colour_count + 2];
-  const ConstraintJob* jobs = colour_contact_constraints(world, context, count, &colour_start);
+  ConstraintJob* jobs = colour_contact_constraints(world, context, count, &colour_start);
   world->contacts_read_after_update += count;
 
-  PrepBody static_a, static_b;  // a side that is not simulated
+  // Serial, in contact order: each constraint's slot, and the list of solver
+  // bodies whose PrepBody records the constraints read (each once, at its
+  // first constraint).
+  int32_t* gather = arena_allocate_array<int32_t>(arena, context->solver_body_count, "prep_gather");
+  int32_t gather_count = 0;
   for (int32_t n = 0; n < count; ++n) {
-    const ConstraintJob job = jobs[n];
+    ConstraintJob& job = jobs[n];
+    job.slot = colour_start[job.colour]++;
+    for (const int32_t i : {job.solver_a, job.solver_b}) {
+      if (i < 0 || prep_bodies[i].has_box != k_prep_body_unset) continue;
+      prep_bodies[i].has_box = 0;  // listed; gather_prep_body writes it
+      gather[gather_count++] = i;
+    }
+  }
+  // In blocks on the workers (task.h): each record and each constraint is
+  // written by one item only and depends on nothing another item writes.
+  parallel_for(context->tasks, "prepare_bodies", gather_count, k_prep_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t g = begin; g < end; ++g) gather_prep_body(*world, *context, gather[g], &prep_bodies[gather[g]]);
+  });
+  const auto build = [world, context, prep_bodies, &contacts](const ConstraintJob& job) {
     const int32_t ci = job.contact, ia = job.solver_a, ib = job.solver_b;
     const Contact& c = contacts[static_cast<size_t>(ci)];
+    PrepBody static_a, static_b;  // a side that is not simulated
     const PrepBody* side_a;
     const PrepBody* side_b;
     if (ia >= 0) {
-      side_a = &prep_body(ia);
+      side_a = &prep_bodies[ia];
     } else {
       static_a = static_side(world->body_sims[static_cast<size_t>(c.body_a)]);
       side_a = &static_a;
     }
     if (ib >= 0) {
-      side_b = &prep_body(ib);
+      side_b = &prep_bodies[ib];
     } else {
       static_b = static_side(world->body_sims[static_cast<size_t>(c.body_b)]);
       side_b = &static_b;
     }
-    ContactConstraint& cc = context->constraints[colour_start[job.colour]++];
+    ContactConstraint& cc = context->constraints[job.slot];
     // Every field is written below (the array is unwritten storage,
     // arena_allocate_array_for_overwrite): the header here, each used point in the loop, an
     // unused second point zeroed as a whole. A field added to either struct
@@ -468,8 +491,12 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
     }
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
-  }
-  arena_free(arena, const_cast<ConstraintJob*>(jobs));
+  };
+  parallel_for(context->tasks, "prepare_contacts", count, k_prep_contact_block, [jobs, &build](int32_t begin, int32_t end) {
+    for (int32_t n = begin; n < end; ++n) build(jobs[n]);
+  });
+  arena_free(arena, gather);
+  arena_free(arena, jobs);
   arena_free(arena, prep_bodies);
   pack_contact_lanes(world, context);
 }

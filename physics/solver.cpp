@@ -108,8 +108,7 @@ void stage_prepare_bodies(World* world, StepContext* context) {
   context->params = arena_allocate_array<SolverBodyParams>(arena, count, "solver_body_params");
   context->solver_body_count = count;
 
-  const Q32 h = context->h;
-  const Vec2 gravity = world->def.gravity;
+  // Serial: the solver indices, in body order.
   int32_t n = 0;
   for (int32_t b = 0; b < body_capacity; ++b) {
     const size_t bi = static_cast<size_t>(b);
@@ -117,33 +116,46 @@ void stage_prepare_bodies(World* world, StepContext* context) {
       context->body_to_solver[bi] = k_null_index;
       continue;
     }
-    const Body& body = world->bodies[bi];
-    const BodySim& sim = world->body_sims[bi];
     context->body_to_solver[bi] = n;
     context->solver_to_body[n] = b;
-    BodyState& state = context->states[n];
-    state.linear_velocity = sim.linear_velocity;
-    state.angular_velocity = sim.angular_velocity;
-    state.center = sim.center;
-    state.rotation = sim.transform.q;
-    SolverBodyParams& p = context->params[n];
-    p = SolverBodyParams{};
-    p.inv_mass = sim.inv_mass;
-    p.inv_inertia = sim.inv_inertia;
-    p.linear_damping_factor = Q32::one();
-    p.angular_damping_factor = Q32::one();
-    if (body.type == BodyType::dynamic_body) {
-      const Q32 max_a = k_max_linear_acceleration, max_alpha = k_max_angular_acceleration;
-      const Vec2 a{sim.gravity_scale * gravity.x + clamp(mul_quiet(sim.inv_mass, sim.force.x), -max_a, max_a),
-                   sim.gravity_scale * gravity.y + clamp(mul_quiet(sim.inv_mass, sim.force.y), -max_a, max_a)};
-      const Q32 alpha = clamp(mul_quiet(sim.inv_inertia, sim.torque), -max_alpha, max_alpha);
-      p.delta_linear_velocity = h * a;
-      p.delta_angular_velocity = h * alpha;
-      p.linear_damping_factor = damping_factor(h, sim.linear_damping);
-      p.angular_damping_factor = damping_factor(h, sim.angular_damping);
-    }
     ++n;
   }
+  // In blocks on the workers: each solver body's state and parameters.
+  const Q32 h = context->h;
+  const Vec2 gravity = world->def.gravity;
+  const Body* bodies = world->bodies.data();
+  const BodySim* sims = world->body_sims.data();
+  const int32_t* solver_to_body = context->solver_to_body;
+  BodyState* states = context->states;
+  SolverBodyParams* params = context->params;
+  parallel_for(context->tasks, "prepare_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t i = begin; i < end; ++i) {
+      const size_t bi = static_cast<size_t>(solver_to_body[i]);
+      const Body& body = bodies[bi];
+      const BodySim& sim = sims[bi];
+      BodyState& state = states[i];
+      state.linear_velocity = sim.linear_velocity;
+      state.angular_velocity = sim.angular_velocity;
+      state.center = sim.center;
+      state.rotation = sim.transform.q;
+      SolverBodyParams& p = params[i];
+      p = SolverBodyParams{};
+      p.inv_mass = sim.inv_mass;
+      p.inv_inertia = sim.inv_inertia;
+      p.linear_damping_factor = Q32::one();
+      p.angular_damping_factor = Q32::one();
+      if (body.type == BodyType::dynamic_body) {
+        const Q32 max_a = k_max_linear_acceleration, max_alpha = k_max_angular_acceleration;
+        const Vec2 a{sim.gravity_scale * gravity.x + clamp(mul_quiet(sim.inv_mass, sim.force.x), -max_a, max_a),
+                     sim.gravity_scale * gravity.y + clamp(mul_quiet(sim.inv_mass, sim.force.y), -max_a, max_a)};
+        const Q32 alpha = clamp(mul_quiet(sim.inv_inertia, sim.torque), -max_alpha, max_alpha);
+        p.delta_linear_velocity = h * a;
+        p.delta_angular_velocity = h * alpha;
+        p.linear_damping_factor = damping_factor(h, sim.linear_damping);
+        p.angular_damping_factor = damping_factor(h, sim.angular_damping);
+      }
+    }
+  });
 }
 
 void stage_prepare_contacts(World* world, StepContext* context) {

@@ -128,7 +128,7 @@ class WorkerPool {
  public:
   explicit WorkerPool(int32_t thread_count) {
     threads_.reserve(static_cast<size_t>(thread_count));
-    for (int32_t i = 0; i < thread_count; ++i) threads_.emplace_back([this] { worker_main(); });
+    for (int32_t i = 0; i < thread_count; ++i) threads_.emplace_back([this, i] { worker_main(i + 1); });
   }
 
   ~WorkerPool() {
@@ -158,7 +158,15 @@ class WorkerPool {
     job.count = count;
     job.block_size = block_size;
     job.block_count = block_count_of(count, block_size);
-    job.next.store(0, std::memory_order_relaxed);
+    // Participant p (0: this thread, 1…: the pool's threads) owns the
+    // contiguous blocks [p·B/P, (p+1)·B/P).
+    const int32_t participants = static_cast<int32_t>(threads_.size()) + 1;
+    job.participants = participants;
+    for (int32_t p = 0; p < participants; ++p) {
+      const int64_t lo = int64_t{p} * job.block_count / participants;
+      const int64_t hi = int64_t{p + 1} * job.block_count / participants;
+      job.ranges[p].store(pack_range(static_cast<uint32_t>(lo), static_cast<uint32_t>(hi)), std::memory_order_relaxed);
+    }
     job.done.store(0, std::memory_order_relaxed);
     {
       // Under the lock so a thread about to sleep either sees the new serial
@@ -167,7 +175,7 @@ class WorkerPool {
       serial_.store(serial, std::memory_order_seq_cst);
     }
     if (sleepers_.load(std::memory_order_seq_cst) > 0) wake_.notify_all();
-    work(job);
+    work(job, 0);
     for (uint32_t spins = 0; job.done.load(std::memory_order_acquire) < job.block_count; ++spins) {
       if (spins < 256) {
         spin_pause();
@@ -186,24 +194,54 @@ class WorkerPool {
     int32_t count = 0;
     int32_t block_size = 1;
     int32_t block_count = 0;
-    std::atomic<int32_t> next{0};    ///< next block to claim
+    int32_t participants = 1;        ///< threads that may run blocks: the pool's and the stepping thread
+    /// Per participant, the blocks [lo, hi) not yet claimed of its share
+    /// (pack_range): the owner claims from the front, others from the back.
+    std::atomic<uint64_t> ranges[k_max_workers];
     std::atomic<int32_t> done{0};    ///< blocks finished
     std::atomic<int32_t> inside{0};  ///< pool threads inside this stage
   };
 
-  /// Claims and runs blocks until none is left.
-  static void work(Job& job) {
+  static uint64_t pack_range(uint32_t lo, uint32_t hi) { return (uint64_t{lo} << 32) | hi; }
+
+  /// Claims one block of range r from its front (the owner) or its back
+  /// (another participant); -1 when the range is empty.
+  static int32_t claim(std::atomic<uint64_t>& r, bool front) {
+    uint64_t v = r.load(std::memory_order_relaxed);
     for (;;) {
-      const int32_t b = job.next.fetch_add(1, std::memory_order_relaxed);
-      if (b >= job.block_count) return;
-      const int32_t begin = b * job.block_size;
-      const int32_t end = job.count - begin < job.block_size ? job.count : begin + job.block_size;
-      job.fn(job.context, begin, end);
-      job.done.fetch_add(1, std::memory_order_release);
+      const uint32_t lo = static_cast<uint32_t>(v >> 32), hi = static_cast<uint32_t>(v);
+      if (lo >= hi) return -1;
+      const uint64_t next = front ? pack_range(lo + 1, hi) : pack_range(lo, hi - 1);
+      if (r.compare_exchange_weak(v, next, std::memory_order_relaxed, std::memory_order_relaxed)) {
+        return static_cast<int32_t>(front ? lo : hi - 1);
+      }
     }
   }
 
-  void worker_main() {
+  static void run_one(Job& job, int32_t b) {
+    const int32_t begin = b * job.block_size;
+    const int32_t end = job.count - begin < job.block_size ? job.count : begin + job.block_size;
+    job.fn(job.context, begin, end);
+    job.done.fetch_add(1, std::memory_order_release);
+  }
+
+  /// Claims and runs blocks until none is left: first its own share, front
+  /// to back (neighbouring blocks touch neighbouring bodies, so a thread
+  /// keeps the same region of the world in its cache from stage to stage),
+  /// then the other shares from their back. Which thread runs a block never
+  /// changes what the block computes (task.h).
+  static void work(Job& job, int32_t self) {
+    const int32_t participants = job.participants;
+    if (self < participants) {
+      for (int32_t b; (b = claim(job.ranges[self], true)) >= 0;) run_one(job, b);
+    }
+    for (int32_t k = 1; k <= participants; ++k) {
+      const int32_t other = (self + k) % participants;
+      for (int32_t b; (b = claim(job.ranges[other], false)) >= 0;) run_one(job, b);
+    }
+  }
+
+  void worker_main(int32_t self) {
     uint64_t seen = 0;
     for (;;) {
       // Spin (cheap between the stages of one step), then yield, then sleep
@@ -231,7 +269,7 @@ class WorkerPool {
       // stepping thread cannot reuse its slot until this thread leaves.
       Job& job = jobs_[now & 1];
       job.inside.fetch_add(1, std::memory_order_seq_cst);
-      if (serial_.load(std::memory_order_seq_cst) == now) work(job);
+      if (serial_.load(std::memory_order_seq_cst) == now) work(job, self);
       job.inside.fetch_sub(1, std::memory_order_seq_cst);
     }
   }

@@ -19,10 +19,15 @@
 //   * the built-in pool (TaskSystem::pool): worker_count − 1 std::threads made
 //     by task_system_configure (create_world, world_set_worker_count), never
 //     inside a step. A stage is published with a serial number; every thread
-//     (the stepping one too) claims blocks with an atomic counter, and the
-//     stepping thread returns when every block has run (task.cpp explains
-//     why a late thread never reads a newer stage's fields). Idle threads
-//     spin briefly, then yield, then sleep on a condition variable;
+//     (the stepping one too) owns a contiguous share of the blocks, claims
+//     its own from the front and then the others' from their back (one
+//     packed atomic range per thread), and the stepping thread returns when
+//     every block has run (task.cpp explains why a late thread never reads a
+//     newer stage's fields). Contiguous shares keep a thread on the same
+//     region of the world from stage to stage (pyramid-100's solve went
+//     from 1.4× to about 1.6× on two cores with them, against one counter
+//     that dealt blocks alternately). Idle threads spin briefly, then yield,
+//     then sleep on a condition variable;
 //   * the user's task system (WorldDef::enqueue_task / finish_task): one
 //     enqueue/finish pair per stage, items = blocks. The task_context handed
 //     out is this world slot's TaskTicket, which lives for the whole process,
