@@ -13,9 +13,9 @@
 // lanes.
 //
 // Cost: one pass over the contacts with a 32-bit colour mask per solver body:
-// ~67 instructions per constraint on x86-64, the job record included
-// (pyramid-100, callgrind), 7 % of the preparation's ~970
-// (docs/benchmarks.md).
+// ~70 instructions per constraint on x86-64, the job record (with its rank
+// in its colour) included (pyramid-100, callgrind), 7 % of the
+// preparation's ~1,000 (docs/benchmarks.md).
 //
 // Rejected (for now): incremental colouring (a persistent contact keeps last
 // step's colour, as Box2D v3's constraint graph does). The colour decides the
@@ -35,14 +35,12 @@
 
 namespace tandem {
 
-ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count,
-                                          int32_t (*out_cursor)[k_contact_colour_count + 2]) {
+ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count) {
   Arena* arena = &world->arena;
   ConstraintJob* jobs = arena_allocate_array_for_overwrite<ConstraintJob>(arena, count, "constraint_jobs");
   uint32_t* colour_masks = arena_allocate_array<uint32_t>(arena, context->solver_body_count, "colour_masks");
   for (int32_t i = 0; i < context->solver_body_count; ++i) colour_masks[i] = 0;
-  int32_t* colour_start = *out_cursor;
-  for (int32_t k = 0; k < k_contact_colour_count + 2; ++k) colour_start[k] = 0;
+  int32_t colour_start[k_contact_colour_count + 2] = {};  // per colour k: count at [k + 1], then first slot at [k]
   const auto movable = [context](int32_t solver_index) {
     if (solver_index < 0) return false;
     const SolverBodyParams& p = context->params[solver_index];
@@ -65,8 +63,7 @@ ConstraintJob* colour_contact_constraints(World* world, StepContext* context, in
       if (ma) colour_masks[ia] |= uint32_t{1} << colour;
       if (mb) colour_masks[ib] |= uint32_t{1} << colour;
     }
-    jobs[n++] = ConstraintJob{ci, ia, ib, colour, -1};
-    ++colour_start[colour + 1];
+    jobs[n++] = ConstraintJob{ci, ia, ib, colour, colour_start[colour + 1]++};
   });
   for (int32_t k = 0; k <= k_contact_colour_count; ++k) colour_start[k + 1] += colour_start[k];
   for (int32_t k = 0; k <= k_contact_colour_count + 1; ++k) context->colour_offsets[k] = colour_start[k];

@@ -27,17 +27,16 @@ struct ConstraintJob {
   int32_t solver_a;  ///< solver index of body A, or k_null_index
   int32_t solver_b;  ///< solver index of body B, or k_null_index
   int32_t colour;    ///< 0 … k_contact_colour_count (the last: the overflow colour)
-  int32_t slot;      ///< the constraint's index in StepContext::constraints (set by the preparation)
+  int32_t rank;      ///< its place among the constraints of its colour (contact order): it is stored at colour_offsets[colour] + rank
 };
 
 /// Colours the `count` constraints prepare_contact_constraints will build
 /// (touching contacts with at least one simulated body, in contact order):
 /// returns an arena array of their `count` jobs, in contact order, that the
 /// caller frees, and writes context->colour_offsets, colour_count and
-/// overflow_constraint_count. *out_cursor[k] receives the first constraint
-/// slot of colour k (the caller advances it while storing constraints colour
-/// by colour).
-ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count,
-                                          int32_t (*out_cursor)[k_contact_colour_count + 2]);
+/// overflow_constraint_count. Job n's constraint belongs at
+/// colour_offsets[colour] + rank (colour by colour, contact order within a
+/// colour).
+ConstraintJob* colour_contact_constraints(World* world, StepContext* context, int32_t count);
 
 }  // namespace tandem

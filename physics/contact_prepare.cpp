@@ -7,8 +7,8 @@
 // opening comment and docs/determinism.md, "Range of the contact
 // preparation". Split out of contact_solver.cpp (code moved, not changed).
 //
-// Cost (issue 20): ~970 instructions per touching contact on pyramid-100
-// (x86-64 g++, callgrind; docs/benchmarks.md), of which ~320 per point (a
+// Cost (issue 20): ~1,000 instructions per touching contact on pyramid-100
+// (998; x86-64 g++, callgrind; docs/benchmarks.md), of which ~320 per point (a
 // box contact has two) go to its 17 rounded 128-bit products, 2 reciprocals
 // and 22 stores. What the
 // per-contact part avoids: reading four per-body arrays (SolverBodyParams,
@@ -17,11 +17,14 @@
 // and walking the awake index a third time: the colouring pass hands over
 // each constraint's contact and solver indices (ConstraintJob).
 //
-// Workers: the counting pass, the colouring and one short pass that gives
-// each constraint its slot and lists the bodies to gather run on the
-// stepping thread in contact order; gathering the records and building the
-// constraints run in blocks (task.h), each item writing only its own record
-// or constraint, so the bits do not depend on the worker count.
+// Workers: the counting pass, the colouring (which gives each constraint its
+// slot: its colour's offset plus its rank in the colour) and one short pass
+// that lists the bodies to gather run on the stepping thread in contact
+// order; gathering the records and building the constraints run in blocks
+// (task.h), each item writing only its own record or constraint, so the bits
+// do not depend on the worker count. Making them parallel cost ~30
+// instructions per contact on one thread (969 → 998: the listing pass, the
+// slot lookup).
 // Rejected: gathering every solver body's record up front (a scene of many
 // bodies and few contacts, circles-16k: 16,000 bodies, 875 contacts, would
 // pay for all of them); dropping the counting pass (the constraint array,
@@ -261,86 +264,13 @@ inline bool inside_reach_box(Vec2 v, const PrepBody& b) {
          (static_cast<uint64_t>(v.y.raw) + b.box_offset <= b.box_limit);
 }
 
-}  // namespace
-
-Softness make_softness(Q32 hertz, Q32 zeta, Q32 h) {
-  const Q32 omega = k_two_pi * hertz;
-  const Q32 a1 = zeta * 2 + h * omega;
-  const Q32 a2 = h * omega * a1;
-  const Q32 a3 = Q32::one() / (Q32::one() + a2);
-  Softness s;
-  s.bias_rate = a1 > Q32::zero() ? omega / a1 : Q32::zero();
-  s.mass_scale = a2 * a3;
-  s.impulse_scale = a3;
-  return s;
-}
-
-void prepare_contact_constraints(World* world, StepContext* context) {
-  const Q32 h = context->h;
-  context->inv_h = Q32::one() / h;
-  context->max_push_speed = world->def.max_contact_push_speed;
-  context->restitution_threshold = world->def.restitution_threshold;
-  // Stiffness capped at a quarter of the sub-step rate (stability).
-  const Q32 hertz = min(world->def.contact_hertz, context->inv_h / 4);
-  context->contact_softness = make_softness(hertz, world->def.contact_damping_ratio, h);
-  context->static_softness = make_softness(hertz * 2, world->def.contact_damping_ratio, h);
-
-  // Contacts of sleeping islands are not read: only the awake index
-  // (for_each_awake_contact, world.h), in contact order.
-  const std::vector<Contact>& contacts = world->contacts;
-  int32_t count = 0;
-  for_each_awake_contact(*world, [&](int32_t ci) {
-    const Contact& c = contacts[static_cast<size_t>(ci)];
-    if ((c.flags & k_contact_touching) == 0) return;
-    if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
-        context->body_to_solver[static_cast<size_t>(c.body_b)] == k_null_index) {
-      return;
-    }
-    ++count;
-  });
-  Arena* arena = &world->arena;
-  // Unwritten: every field of each record is stored below (no zeroing
-  // pass over the 464-byte records first).
-  context->constraints = arena_allocate_array_for_overwrite<ContactConstraint>(arena, count, "contact_constraints");
-  context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
-  context->constraint_count = count;
-  // Per solver body: the record of what the preparation reads of it
-  // (PrepBody), gathered only for the bodies some constraint reads
-  // (k_prep_body_unset for the others: a scene of many bodies and few
-  // contacts pays nothing for them).
-  PrepBody* prep_bodies =
-      arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
-  for (int32_t i = 0; i < context->solver_body_count; ++i) {
-    context->bounce_marks[i] = -1;
-    prep_bodies[i].has_box = k_prep_body_unset;
-  }
-  // Graph colours (contact_colour.cpp): constraints are stored colour by
-  // colour, in contact order within a colour. The colouring pass hands over
-  // the constraints' contacts and solver indices (jobs, in contact order).
-  int32_t colour_start[k_contact_colour_count + 2];
-  ConstraintJob* jobs = colour_contact_constraints(world, context, count, &colour_start);
-  world->contacts_read_after_update += count;
-
-  // Serial, in contact order: each constraint's slot, and the list of solver
-  // bodies whose PrepBody records the constraints read (each once, at its
-  // first constraint).
-  int32_t* gather = arena_allocate_array<int32_t>(arena, context->solver_body_count, "prep_gather");
-  int32_t gather_count = 0;
-  for (int32_t n = 0; n < count; ++n) {
-    ConstraintJob& job = jobs[n];
-    job.slot = colour_start[job.colour]++;
-    for (const int32_t i : {job.solver_a, job.solver_b}) {
-      if (i < 0 || prep_bodies[i].has_box != k_prep_body_unset) continue;
-      prep_bodies[i].has_box = 0;  // listed; gather_prep_body writes it
-      gather[gather_count++] = i;
-    }
-  }
-  // In blocks on the workers (task.h): each record and each constraint is
-  // written by one item only and depends on nothing another item writes.
-  parallel_for(context->tasks, "prepare_bodies", gather_count, k_prep_body_block, [=](int32_t begin, int32_t end) {
-    for (int32_t g = begin; g < end; ++g) gather_prep_body(*world, *context, gather[g], &prep_bodies[gather[g]]);
-  });
-  const auto build = [world, context, prep_bodies, &contacts](const ConstraintJob& job) {
+/// Builds the constraints of jobs [begin, end) (prepare_contact_constraints;
+/// every argument a local, so nothing the stores below write can make the
+/// compiler reload them).
+void build_constraints(World* world, StepContext* context, const PrepBody* prep_bodies, const Contact* contacts,
+                       const ConstraintJob* jobs, int32_t begin, int32_t end) {
+  for (int32_t n = begin; n < end; ++n) {
+    const ConstraintJob& job = jobs[n];
     const int32_t ci = job.contact, ia = job.solver_a, ib = job.solver_b;
     const Contact& c = contacts[static_cast<size_t>(ci)];
     PrepBody static_a, static_b;  // a side that is not simulated
@@ -358,7 +288,7 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       static_b = static_side(world->body_sims[static_cast<size_t>(c.body_b)]);
       side_b = &static_b;
     }
-    ContactConstraint& cc = context->constraints[job.slot];
+    ContactConstraint& cc = context->constraints[context->colour_offsets[job.colour] + job.rank];
     // Every field is written below (the array is unwritten storage,
     // arena_allocate_array_for_overwrite): the header here, each used point in the loop, an
     // unused second point zeroed as a whole. A field added to either struct
@@ -491,10 +421,90 @@ void prepare_contact_constraints(World* world, StepContext* context) {
       cp.separation = Q32::zero();  // written by the first relax pass before any solve reads it
     }
     if (cc.point_count < 2) cc.points[1] = ContactConstraintPoint{};
-  };
-  parallel_for(context->tasks, "prepare_contacts", count, k_prep_contact_block, [jobs, &build](int32_t begin, int32_t end) {
-    for (int32_t n = begin; n < end; ++n) build(jobs[n]);
+  }
+}
+
+}  // namespace
+
+Softness make_softness(Q32 hertz, Q32 zeta, Q32 h) {
+  const Q32 omega = k_two_pi * hertz;
+  const Q32 a1 = zeta * 2 + h * omega;
+  const Q32 a2 = h * omega * a1;
+  const Q32 a3 = Q32::one() / (Q32::one() + a2);
+  Softness s;
+  s.bias_rate = a1 > Q32::zero() ? omega / a1 : Q32::zero();
+  s.mass_scale = a2 * a3;
+  s.impulse_scale = a3;
+  return s;
+}
+
+void prepare_contact_constraints(World* world, StepContext* context) {
+  const Q32 h = context->h;
+  context->inv_h = Q32::one() / h;
+  context->max_push_speed = world->def.max_contact_push_speed;
+  context->restitution_threshold = world->def.restitution_threshold;
+  // Stiffness capped at a quarter of the sub-step rate (stability).
+  const Q32 hertz = min(world->def.contact_hertz, context->inv_h / 4);
+  context->contact_softness = make_softness(hertz, world->def.contact_damping_ratio, h);
+  context->static_softness = make_softness(hertz * 2, world->def.contact_damping_ratio, h);
+
+  // Contacts of sleeping islands are not read: only the awake index
+  // (for_each_awake_contact, world.h), in contact order.
+  const std::vector<Contact>& contacts = world->contacts;
+  int32_t count = 0;
+  for_each_awake_contact(*world, [&](int32_t ci) {
+    const Contact& c = contacts[static_cast<size_t>(ci)];
+    if ((c.flags & k_contact_touching) == 0) return;
+    if (context->body_to_solver[static_cast<size_t>(c.body_a)] == k_null_index &&
+        context->body_to_solver[static_cast<size_t>(c.body_b)] == k_null_index) {
+      return;
+    }
+    ++count;
   });
+  Arena* arena = &world->arena;
+  // Unwritten: every field of each record is stored below (no zeroing
+  // pass over the 464-byte records first).
+  context->constraints = arena_allocate_array_for_overwrite<ContactConstraint>(arena, count, "contact_constraints");
+  context->bounce_marks = arena_allocate_array<int32_t>(arena, context->solver_body_count, "bounce_marks");
+  context->constraint_count = count;
+  // Per solver body: the record of what the preparation reads of it
+  // (PrepBody), gathered only for the bodies some constraint reads
+  // (k_prep_body_unset for the others: a scene of many bodies and few
+  // contacts pays nothing for them).
+  PrepBody* prep_bodies =
+      arena_allocate_array_for_overwrite<PrepBody>(arena, context->solver_body_count, "prep_bodies");
+  for (int32_t i = 0; i < context->solver_body_count; ++i) {
+    context->bounce_marks[i] = -1;
+    prep_bodies[i].has_box = k_prep_body_unset;
+  }
+  // Graph colours (contact_colour.cpp): constraints are stored colour by
+  // colour, in contact order within a colour. The colouring pass hands over
+  // the constraints' contacts and solver indices (jobs, in contact order).
+  ConstraintJob* jobs = colour_contact_constraints(world, context, count);
+  world->contacts_read_after_update += count;
+
+  // Serial, in contact order: the solver bodies whose PrepBody records the
+  // constraints read (each once).
+  int32_t* gather = arena_allocate_array<int32_t>(arena, context->solver_body_count, "prep_gather");
+  int32_t gather_count = 0;
+  const auto list = [prep_bodies, gather, &gather_count](int32_t i) {
+    if (i < 0 || prep_bodies[i].has_box != k_prep_body_unset) return;
+    prep_bodies[i].has_box = 0;  // listed; gather_prep_body writes it
+    gather[gather_count++] = i;
+  };
+  for (int32_t n = 0; n < count; ++n) {
+    list(jobs[n].solver_a);
+    list(jobs[n].solver_b);
+  }
+  // In blocks on the workers (task.h): each record and each constraint is
+  // written by one item only and depends on nothing another item writes.
+  parallel_for(context->tasks, "prepare_bodies", gather_count, k_prep_body_block, [=](int32_t begin, int32_t end) {
+    for (int32_t g = begin; g < end; ++g) gather_prep_body(*world, *context, gather[g], &prep_bodies[gather[g]]);
+  });
+  parallel_for(context->tasks, "prepare_contacts", count, k_prep_contact_block,
+               [world, context, prep_bodies, jobs](int32_t begin, int32_t end) {
+                 build_constraints(world, context, prep_bodies, world->contacts.data(), jobs, begin, end);
+               });
   arena_free(arena, gather);
   arena_free(arena, jobs);
   arena_free(arena, prep_bodies);
