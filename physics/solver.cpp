@@ -97,17 +97,10 @@ void stage_update_contacts(World* world, StepContext* context) {
 void stage_prepare_bodies(World* world, StepContext* context) {
   Arena* arena = &world->arena;
   const int32_t body_capacity = id_pool_capacity(world->body_pool);
-  int32_t count = 0;
-  for (int32_t b = 0; b < body_capacity; ++b) {
-    if (id_pool_is_alive(world->body_pool, b) && body_is_simulated(world->bodies[static_cast<size_t>(b)])) ++count;
-  }
-  // Freed in reverse order by stage_finalize_bodies.
+  // Freed in reverse order by stage_finalize_bodies. solver_to_body has room
+  // for every body, so one serial pass numbers the simulated ones.
   context->body_to_solver = arena_allocate_array<int32_t>(arena, body_capacity, "body_to_solver");
-  context->solver_to_body = arena_allocate_array<int32_t>(arena, count, "solver_to_body");
-  context->states = arena_allocate_array<BodyState>(arena, count, "body_states");
-  context->params = arena_allocate_array<SolverBodyParams>(arena, count, "solver_body_params");
-  context->solver_body_count = count;
-
+  context->solver_to_body = arena_allocate_array<int32_t>(arena, body_capacity, "solver_to_body");
   // Serial: the solver indices, in body order.
   int32_t n = 0;
   for (int32_t b = 0; b < body_capacity; ++b) {
@@ -120,6 +113,12 @@ void stage_prepare_bodies(World* world, StepContext* context) {
     context->solver_to_body[n] = b;
     ++n;
   }
+  const int32_t count = n;
+  // Unwritten (arena_allocate_array_for_overwrite): the blocks below write
+  // every field of both records.
+  context->states = arena_allocate_array_for_overwrite<BodyState>(arena, count, "body_states");
+  context->params = arena_allocate_array_for_overwrite<SolverBodyParams>(arena, count, "solver_body_params");
+  context->solver_body_count = count;
   // In blocks on the workers: each solver body's state and parameters.
   const Q32 h = context->h;
   const Vec2 gravity = world->def.gravity;
