@@ -189,15 +189,36 @@ void set_contact_solver_path(ContactSolverPath path) {
 
 namespace {
 
-/// Each point's relative normal velocity at the start of a sub-step.
-void record_approach_constraint(ContactConstraint& cc, BodyState* states) {
-  BodyState dummy{};
-  const BodyState* a = body_state(states, cc.solver_a, &dummy);
-  const BodyState* b = body_state(states, cc.solver_b, &dummy);
+/// The body a constraint side reads when it has no solver body: zero
+/// velocity at the origin, the identity rotation. Never written (such a
+/// side has zero inverse mass and inertia, so store_velocity skips it).
+constexpr BodyState k_no_body{};
+
+/// Each point's relative normal velocity at the start of a sub-step, where
+/// the solve pass will read it. The solve reads it for a point that is not
+/// touching (the "about to touch" test) or may bounce (restitution > 0);
+/// a touching point without restitution only vets it (WrappingOps), and a
+/// stale value there changes no result (at worst the witness falls back to
+/// the saturating pass, which gives the same bits). From sub-step 1 on, the
+/// separation the solve will read is the one the last relax pass stored
+/// (cp.separation, solve_constraint_with), so such points are skipped:
+/// on a resting pile, most of them (issue 15, "work not done").
+/// separations_known: false in sub-step 0 (the solve computes s afresh).
+void record_approach_constraint(ContactConstraint& cc, const BodyState* states, bool separations_known) {
+  const bool every_point = !separations_known || cc.restitution > Q32::zero();
+  bool need[2] = {true, true};
+  if (!every_point) {
+    need[0] = cc.points[0].separation > Q32::zero();
+    need[1] = cc.point_count > 1 && cc.points[1].separation > Q32::zero();
+    if (!need[0] && !need[1]) return;
+  }
+  const BodyState& a = cc.solver_a >= 0 ? states[cc.solver_a] : k_no_body;
+  const BodyState& b = cc.solver_b >= 0 ? states[cc.solver_b] : k_no_body;
+  const Vec2 dv = b.linear_velocity - a.linear_velocity;
   for (int32_t j = 0; j < cc.point_count; ++j) {
+    if (!need[j]) continue;
     ContactConstraintPoint& cp = cc.points[j];
-    cp.approach_velocity = relative_velocity(b->linear_velocity - a->linear_velocity, cc.normal, b->angular_velocity,
-                                             cp.rn_b, a->angular_velocity, cp.rn_a);
+    cp.approach_velocity = relative_velocity(dv, cc.normal, b.angular_velocity, cp.rn_b, a.angular_velocity, cp.rn_a);
   }
 }
 
@@ -213,18 +234,14 @@ void record_contact_approach(StepContext* context) {
   }
   const int32_t first = context->lanes != nullptr ? context->colour_offsets[k_contact_colour_count] : 0;
   ContactConstraint* constraints = context->constraints + first;
+  const bool separations_known = context->sub_step_index > 0;
   parallel_for(context->tasks, "record_approach", context->constraint_count - first, k_constraint_block,
-               [constraints, states](int32_t begin, int32_t end) {
-                 for (int32_t i = begin; i < end; ++i) record_approach_constraint(constraints[i], states);
+               [constraints, states, separations_known](int32_t begin, int32_t end) {
+                 for (int32_t i = begin; i < end; ++i) record_approach_constraint(constraints[i], states, separations_known);
                });
 }
 
 namespace {
-
-/// The body a constraint side reads when it has no solver body: zero
-/// velocity at the origin, the identity rotation. Never written (such a
-/// side has zero inverse mass and inertia, so store_velocity skips it).
-constexpr BodyState k_no_body{};
 
 /// Warm start of one constraint with the arithmetic of Ops: the bodies are
 /// written only if ops.clean() holds at the end; returns whether they were.
