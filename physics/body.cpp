@@ -220,6 +220,10 @@ Status check_body_mass_with(const World& w, int32_t body_index, int32_t replace_
 
 void update_body_shape_bounds(World* w, int32_t body_index) {
   broad_phase_mark_stale(w);  // queries re-sync (broad_phase.h)
+  compute_body_shape_bounds(w, body_index);
+}
+
+void compute_body_shape_bounds(World* w, int32_t body_index) {
   const Transform xf = sim_at(w, body_index).transform;
   for (int32_t s = body_at(w, body_index).head_shape; s != k_null_index;
        s = w->shapes[static_cast<size_t>(s)].next_shape) {

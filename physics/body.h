@@ -136,8 +136,14 @@ inline bool body_is_simulated(const Body& body) {
 /// (changing nothing) when a dynamic body's mass or inertia breaks limits.h.
 Status update_body_mass(World* world, int32_t body_index, const char* function);
 
-/// Recomputes the world bounds of every shape of the body from its transform.
+/// Recomputes the world bounds of every shape of the body from its transform
+/// and marks the broad phase stale for queries.
 void update_body_shape_bounds(World* world, int32_t body_index);
+
+/// update_body_shape_bounds without marking the broad phase stale: writes
+/// only the body's own shapes' bounds, so blocks of bodies may run on
+/// different threads (the caller marks the broad phase stale once).
+void compute_body_shape_bounds(World* world, int32_t body_index);
 
 /// Mass data of a body combined from shape masses: mass, local centre and
 /// inertia about it, with inverses.

@@ -127,6 +127,15 @@ void stage_prepare_bodies(World* world, StepContext* context) {
   const int32_t* solver_to_body = context->solver_to_body;
   BodyState* states = context->states;
   SolverBodyParams* params = context->params;
+  // The velocity change of a dynamic body with gravity scale 1 and no force
+  // or torque (most bodies): the formula below with those inputs, once.
+  // mul_quiet(m⁻¹, 0) = 0 for every m⁻¹, so it does not depend on the body.
+  const Q32 max_a = k_max_linear_acceleration;
+  const Vec2 plain_acceleration{Q32::one() * gravity.x + clamp(mul_quiet(Q32::zero(), Q32::zero()), -max_a, max_a),
+                                Q32::one() * gravity.y + clamp(mul_quiet(Q32::zero(), Q32::zero()), -max_a, max_a)};
+  const Vec2 plain_delta = h * plain_acceleration;
+  const Q32 plain_spin = h * clamp(mul_quiet(Q32::zero(), Q32::zero()), -k_max_angular_acceleration,
+                                   k_max_angular_acceleration);
   parallel_for(context->tasks, "prepare_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       const size_t bi = static_cast<size_t>(solver_to_body[i]);
@@ -143,8 +152,14 @@ void stage_prepare_bodies(World* world, StepContext* context) {
       p.inv_inertia = sim.inv_inertia;
       p.linear_damping_factor = Q32::one();
       p.angular_damping_factor = Q32::one();
-      if (body.type == BodyType::dynamic_body) {
-        const Q32 max_a = k_max_linear_acceleration, max_alpha = k_max_angular_acceleration;
+      if (body.type == BodyType::dynamic_body && sim.gravity_scale == Q32::one() && sim.force == Vec2{} &&
+          sim.torque == Q32::zero()) {
+        p.delta_linear_velocity = plain_delta;
+        p.delta_angular_velocity = plain_spin;
+        p.linear_damping_factor = damping_factor(h, sim.linear_damping);
+        p.angular_damping_factor = damping_factor(h, sim.angular_damping);
+      } else if (body.type == BodyType::dynamic_body) {
+        const Q32 max_alpha = k_max_angular_acceleration;
         const Vec2 a{sim.gravity_scale * gravity.x + clamp(mul_quiet(sim.inv_mass, sim.force.x), -max_a, max_a),
                      sim.gravity_scale * gravity.y + clamp(mul_quiet(sim.inv_mass, sim.force.y), -max_a, max_a)};
         const Q32 alpha = clamp(mul_quiet(sim.inv_inertia, sim.torque), -max_alpha, max_alpha);
@@ -253,6 +268,9 @@ void stage_finalize_bodies(World* world, StepContext* context) {
   for (int32_t k = 0; k < blocks; ++k) left_bounds[k] = 0;
   // 1 per solver body whose pose changed (the move events, events.cpp).
   uint8_t* moved = arena_allocate_array<uint8_t>(arena, count, "moved_per_body");
+  // Once, here: the blocks below write only their own bodies and shapes
+  // (every block marking the shared flag was a data race, if a benign one).
+  if (count > 0) broad_phase_mark_stale(world);
   parallel_for(context->tasks, "finalize_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       const int32_t b = context->solver_to_body[i];
@@ -273,7 +291,7 @@ void stage_finalize_bodies(World* world, StepContext* context) {
         world->bodies[bi].enabled = false;
         left_bounds[begin / k_body_block] = 1;
       }
-      update_body_shape_bounds(world, b);
+      compute_body_shape_bounds(world, b);
     }
   });
   for (int32_t k = 0; k < blocks; ++k) {

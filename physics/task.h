@@ -24,9 +24,10 @@
 //     packed atomic range per thread), and the stepping thread returns when
 //     every block has run (task.cpp explains why a late thread never reads a
 //     newer stage's fields). Contiguous shares keep a thread on the same
-//     region of the world from stage to stage (pyramid-100's solve went
-//     from 1.4× to about 1.6× on two cores with them, against one counter
-//     that dealt blocks alternately). Idle threads spin briefly, then yield,
+//     region of the world from stage to stage (with the parallel
+//     preparation: pyramid-100 on two cores 1.36–1.50× → 1.73–1.80× of one,
+//     against one counter that dealt blocks alternately; docs/benchmarks.md,
+//     "Workers"). Idle threads spin briefly, then yield,
 //     then sleep on a condition variable;
 //   * the user's task system (WorldDef::enqueue_task / finish_task): one
 //     enqueue/finish pair per stage, items = blocks. The task_context handed

@@ -29,7 +29,7 @@
 #   warm start     warm_start_contacts
 #   solve+relax    solve_contacts + relax_contacts
 #   integrate      stage_integrate_velocities + stage_integrate_positions
-#   broad phase    broad_phase_update_pairs + update_body_shape_bounds
+#   broad phase    broad_phase_update_pairs + compute_body_shape_bounds (the shapes' bounds after the step)
 #   islands        stage_wake_touched + stage_update_sleep
 #   events         events_after_contacts + events_after_step
 #   approach       record_contact_approach (per sub-step)
@@ -92,7 +92,7 @@ total=$(incl 'tandem_profile_timed_steps')
 update=$(incl 'tandem::update_contacts(')
 collide=$(incl 'tandem::collide(')
 bp_pairs=$(incl 'tandem::broad_phase_update_pairs(')
-bounds=$(incl 'tandem::update_body_shape_bounds(')
+bounds=$(incl 'tandem::compute_body_shape_bounds(')
 prepare=$(incl 'tandem::prepare_contact_constraints(')
 warm=$(incl 'tandem::warm_start_contacts(')
 solve=$(incl 'tandem::solve_contacts(')
