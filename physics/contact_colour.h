@@ -27,7 +27,9 @@ struct ConstraintJob {
   int32_t solver_a;  ///< solver index of body A, or k_null_index
   int32_t solver_b;  ///< solver index of body B, or k_null_index
   int32_t colour;    ///< 0 … k_contact_colour_count (the last: the overflow colour)
-  int32_t rank;      ///< its place among the constraints of its colour (contact order): it is stored at colour_offsets[colour] + rank
+  /// Its place among the constraints of its colour (contact order): the
+  /// constraint is stored at colour_offsets[colour] + rank.
+  int32_t rank;
 };
 
 /// Colours the `count` constraints prepare_contact_constraints will build

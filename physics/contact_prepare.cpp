@@ -498,9 +498,10 @@ void prepare_contact_constraints(World* world, StepContext* context) {
   }
   // In blocks on the workers (task.h): each record and each constraint is
   // written by one item only and depends on nothing another item writes.
-  parallel_for(context->tasks, "prepare_bodies", gather_count, k_prep_body_block, [=](int32_t begin, int32_t end) {
-    for (int32_t g = begin; g < end; ++g) gather_prep_body(*world, *context, gather[g], &prep_bodies[gather[g]]);
-  });
+  parallel_for(context->tasks, "prepare_contact_bodies", gather_count, k_prep_body_block,
+               [=](int32_t begin, int32_t end) {
+                 for (int32_t g = begin; g < end; ++g) gather_prep_body(*world, *context, gather[g], &prep_bodies[gather[g]]);
+               });
   parallel_for(context->tasks, "prepare_contacts", count, k_prep_contact_block,
                [world, context, prep_bodies, jobs](int32_t begin, int32_t end) {
                  build_constraints(world, context, prep_bodies, world->contacts.data(), jobs, begin, end);

@@ -237,7 +237,9 @@ void record_contact_approach(StepContext* context) {
   const bool separations_known = context->sub_step_index > 0;
   parallel_for(context->tasks, "record_approach", context->constraint_count - first, k_constraint_block,
                [constraints, states, separations_known](int32_t begin, int32_t end) {
-                 for (int32_t i = begin; i < end; ++i) record_approach_constraint(constraints[i], states, separations_known);
+                 for (int32_t i = begin; i < end; ++i) {
+                   record_approach_constraint(constraints[i], states, separations_known);
+                 }
                });
 }
 
