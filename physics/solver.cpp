@@ -127,15 +127,22 @@ void stage_prepare_bodies(World* world, StepContext* context) {
   const int32_t* solver_to_body = context->solver_to_body;
   BodyState* states = context->states;
   SolverBodyParams* params = context->params;
-  // The velocity change of a dynamic body with gravity scale 1 and no force
-  // or torque (most bodies): the formula below with those inputs, once.
-  // mul_quiet(m⁻¹, 0) = 0 for every m⁻¹, so it does not depend on the body.
-  const Q32 max_a = k_max_linear_acceleration;
-  const Vec2 plain_acceleration{Q32::one() * gravity.x + clamp(mul_quiet(Q32::zero(), Q32::zero()), -max_a, max_a),
-                                Q32::one() * gravity.y + clamp(mul_quiet(Q32::zero(), Q32::zero()), -max_a, max_a)};
-  const Vec2 plain_delta = h * plain_acceleration;
-  const Q32 plain_spin = h * clamp(mul_quiet(Q32::zero(), Q32::zero()), -k_max_angular_acceleration,
-                                   k_max_angular_acceleration);
+  // h·(s·g + F/m) and h·τ/I of a dynamic body, each acceleration capped
+  // (limits.h).
+  const auto velocity_changes = [h, gravity](Q32 gravity_scale, Q32 inv_mass, Vec2 force, Q32 inv_inertia, Q32 torque,
+                                             Vec2* dv, Q32* dw) {
+    const Q32 max_a = k_max_linear_acceleration, max_alpha = k_max_angular_acceleration;
+    const Vec2 a{gravity_scale * gravity.x + clamp(mul_quiet(inv_mass, force.x), -max_a, max_a),
+                 gravity_scale * gravity.y + clamp(mul_quiet(inv_mass, force.y), -max_a, max_a)};
+    *dv = h * a;
+    *dw = h * clamp(mul_quiet(inv_inertia, torque), -max_alpha, max_alpha);
+  };
+  // Most dynamic bodies have gravity scale 1 and no force or torque: their
+  // changes, computed once. They do not depend on m⁻¹ or I⁻¹ there
+  // (mul_quiet(x, 0) = 0 for every x).
+  Vec2 plain_dv;
+  Q32 plain_dw;
+  velocity_changes(Q32::one(), Q32::zero(), Vec2{}, Q32::zero(), Q32::zero(), &plain_dv, &plain_dw);
   parallel_for(context->tasks, "prepare_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       const size_t bi = static_cast<size_t>(solver_to_body[i]);
@@ -152,19 +159,14 @@ void stage_prepare_bodies(World* world, StepContext* context) {
       p.inv_inertia = sim.inv_inertia;
       p.linear_damping_factor = Q32::one();
       p.angular_damping_factor = Q32::one();
-      if (body.type == BodyType::dynamic_body && sim.gravity_scale == Q32::one() && sim.force == Vec2{} &&
-          sim.torque == Q32::zero()) {
-        p.delta_linear_velocity = plain_delta;
-        p.delta_angular_velocity = plain_spin;
-        p.linear_damping_factor = damping_factor(h, sim.linear_damping);
-        p.angular_damping_factor = damping_factor(h, sim.angular_damping);
-      } else if (body.type == BodyType::dynamic_body) {
-        const Q32 max_alpha = k_max_angular_acceleration;
-        const Vec2 a{sim.gravity_scale * gravity.x + clamp(mul_quiet(sim.inv_mass, sim.force.x), -max_a, max_a),
-                     sim.gravity_scale * gravity.y + clamp(mul_quiet(sim.inv_mass, sim.force.y), -max_a, max_a)};
-        const Q32 alpha = clamp(mul_quiet(sim.inv_inertia, sim.torque), -max_alpha, max_alpha);
-        p.delta_linear_velocity = h * a;
-        p.delta_angular_velocity = h * alpha;
+      if (body.type == BodyType::dynamic_body) {
+        if (sim.gravity_scale == Q32::one() && sim.force == Vec2{} && sim.torque == Q32::zero()) {
+          p.delta_linear_velocity = plain_dv;
+          p.delta_angular_velocity = plain_dw;
+        } else {
+          velocity_changes(sim.gravity_scale, sim.inv_mass, sim.force, sim.inv_inertia, sim.torque,
+                           &p.delta_linear_velocity, &p.delta_angular_velocity);
+        }
         p.linear_damping_factor = damping_factor(h, sim.linear_damping);
         p.angular_damping_factor = damping_factor(h, sim.angular_damping);
       }

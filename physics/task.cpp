@@ -231,11 +231,9 @@ class WorkerPool {
   /// then the other shares from their back. Which thread runs a block never
   /// changes what the block computes (task.h).
   static void work(Job& job, int32_t self) {
-    const int32_t participants = job.participants;
-    if (self < participants) {
-      for (int32_t b; (b = claim(job.ranges[self], true)) >= 0;) run_one(job, b);
-    }
-    for (int32_t k = 1; k <= participants; ++k) {
+    const int32_t participants = job.participants;  // > self: every pool thread is one of them
+    for (int32_t b; (b = claim(job.ranges[self], true)) >= 0;) run_one(job, b);
+    for (int32_t k = 1; k < participants; ++k) {
       const int32_t other = (self + k) % participants;
       for (int32_t b; (b = claim(job.ranges[other], false)) >= 0;) run_one(job, b);
     }
