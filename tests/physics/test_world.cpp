@@ -487,6 +487,7 @@ TEST_CASE("create/destroy through the API gives the same ids in every run", "[ph
 }
 
 TEST_CASE("world_step makes no heap allocation once warmed up", "[physics][world]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   ScopedWorld w;
   const std::vector<BodyId> bodies = build_random_scene(w.id, 12345);
   std::mt19937_64 rng(7);
@@ -517,6 +518,7 @@ TEST_CASE("world_step makes no heap allocation once warmed up", "[physics][world
 }
 
 TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "[physics][world]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   // A pile of boxes and circles falling onto the ground: contacts appear,
   // persist and vanish while the count is measured.
   ScopedWorld w;
@@ -554,6 +556,7 @@ TEST_CASE("world_step makes no heap allocation once warmed up, with contacts", "
 }
 
 TEST_CASE("world_step makes no heap allocation when joints break", "[physics][world][joint]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   // A row of balls hanging from a ceiling on breakable revolute joints: once
   // warmed up, a pull breaks them inside counted steps (joint events, the
   // freed slots and the collide-connected filter all use room made when the
@@ -608,6 +611,7 @@ void inline_finish(void*, void*) {}
 }  // namespace
 
 TEST_CASE("world_step makes no heap allocation once warmed up, with workers or a task system", "[physics][world]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   // The pool's threads start at create_world; the user path keeps its block
   // states in the arena. 120 boxes so that stages split into blocks.
   for (const bool task_system : {false, true}) {

@@ -40,6 +40,7 @@ int64_t allocations_of(WorldId world, const Command& command, bool expect_ok) {
 }  // namespace
 
 TEST_CASE("apply_command of force, impulse and velocity on a live body allocates nothing", "[replay][commands]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   UniqueWorld world = make_unique_world(default_world_def()).value;
   BodyDef def = default_body_def();
   def.type = BodyType::dynamic_body;
@@ -73,6 +74,7 @@ TEST_CASE("apply_command of force, impulse and velocity on a live body allocates
 }
 
 TEST_CASE("warm rollback_save and rollback_restore allocate nothing", "[replay][rollback]") {
+  TANDEM_REQUIRE_ALLOCATION_COUNTING();
   using namespace tandem::replay_test;
   const WorldId w = make_scene_world(Scene::pile);
   for (int64_t t = 0; t < 40; ++t) step_scene(Scene::pile, w, t);
