@@ -9,6 +9,11 @@
 #                    fixed/ physics/ replay/ golden/ stress/ tests
 #   clang-sanitize   clang, ASan + UBSan, no recovery, fault checks on
 #                    (the golden chains' variants are split between the two)
+#   clang-tsan       clang, ThreadSanitizer, -O1, NDEBUG (the release code
+#                    paths); the tests that step worlds on the worker pool or
+#                    through a task system: golden chains with 2-16 workers,
+#                    shuffled and reversed task orders, worker counts changed
+#                    between steps, and the physics worker tests
 #   portable-int128  g++ release on wide.h's portable 128-bit path; the same
 #                    tests as clang-release
 #   i686             32-bit x86, no __int128, static; fixed/ tests + golden chains
@@ -40,13 +45,13 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 1
 
-all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize portable-int128 i686 s390x aarch64 wasm32 web fuzz)
+all_builds=(gcc-release clang-release gcc-sanitize clang-sanitize clang-tsan portable-int128 i686 s390x aarch64 wasm32 web fuzz)
 clean=0
 builds=()
 for arg in "$@"; do
   case "$arg" in
     --clean) clean=1 ;;
-    -h|--help) sed -n '2,39p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,44p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "test.sh: unknown option $arg" >&2; exit 2 ;;
     *) builds+=("$arg") ;;
   esac
@@ -122,6 +127,12 @@ run_build() {
       ctest_args=(-R '^(fixed|physics|replay|golden|stress)/' -E '^golden/golden chain (with|through|on the) ') ;;
     clang-sanitize)
       ctest_args=(-E '^determinism lint|^golden/golden chain: [a-z_0-9]+, every broad phase$') ;;
+    # Data races between the pool's threads are undefined behaviour even
+    # where every order gives the same bits: ThreadSanitizer watches the
+    # tests that run steps on more than one thread.
+    clang-tsan)
+      build_args=(--target tandem_tests_golden tandem_tests_physics)
+      ctest_args=(-R '^golden/.*(worker|task system)|^physics/.*(worker|task)') ;;
     *) ctest_args=(-E '^determinism lint') ;;
   esac
 
