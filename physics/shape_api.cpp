@@ -360,7 +360,15 @@ AABB transformed_bounds(const Vec2* points, int32_t count, Q32 r, Transform xf) 
 
 AABB compute_shape_aabb(const ShapeGeometry& g, Transform xf) {
   switch (g.type) {
-    case ShapeType::circle: return transformed_bounds(&g.circle.center, 1, g.circle.radius, xf);
+    case ShapeType::circle: {
+      // transformed_bounds of one point, written out (the same operations in
+      // every build: its bounds are transform_point(xf, c) ∓ r). For a
+      // circle at its body's origin (the common case) the rotation is skipped:
+      // rotating (0, 0) gives (0, 0) exactly, whatever xf.q holds.
+      const Vec2 c = g.circle.center == Vec2{} ? fast::add(Vec2{}, xf.p) : fast::transform_point(xf, g.circle.center);
+      const Vec2 rr{g.circle.radius, g.circle.radius};
+      return {fast::sub(c, rr), fast::add(c, rr)};
+    }
     case ShapeType::capsule: {
       const Vec2 centres[2] = {g.capsule.center1, g.capsule.center2};
       return transformed_bounds(centres, 2, g.capsule.radius, xf);

@@ -284,7 +284,10 @@ void stage_finalize_bodies(World* world, StepContext* context) {
       sim.angular_velocity = s.angular_velocity;
       sim.center = s.center;
       sim.transform.q = s.rotation;
-      sim.transform.p = s.center - rotate(s.rotation, sim.local_center);
+      // fast::: the checked operators' bits. A centre of mass at the body
+      // origin (circles, boxes) needs no rotation: rotating (0, 0) gives (0, 0).
+      const Vec2 offset = sim.local_center == Vec2{} ? Vec2{} : fast::rotate(s.rotation, sim.local_center);
+      sim.transform.p = fast::sub(s.center, offset);
       sim.force = {};
       sim.torque = Q32::zero();
       moved[i] = sim.transform == before ? 0 : 1;
