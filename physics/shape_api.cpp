@@ -341,6 +341,17 @@ AABB transformed_bounds(const Vec2* points, int32_t count, Q32 r, Transform xf) 
       hi = max(hi, v);
     }
   }
+  // lo + p − r and hi + p + r. When every operand is below 2^61 in
+  // magnitude no partial sum can reach 2^63 (nor INT64_MIN), so plain adds
+  // give the saturating adds' bits; otherwise the saturating adds below.
+  constexpr uint64_t k_bias = uint64_t{1} << 61;
+  const auto biased = [](Q32 v) { return static_cast<uint64_t>(v.raw) + k_bias; };
+  if (((biased(lo.x) | biased(lo.y) | biased(hi.x) | biased(hi.y) | biased(xf.p.x) | biased(xf.p.y) | biased(r)) >>
+       62) == 0) {
+    const auto add3 = [](Q32 a, Q32 b, Q32 c) { return Q32::from_raw(a.raw + b.raw + c.raw); };
+    const auto add_sub = [](Q32 a, Q32 b, Q32 c) { return Q32::from_raw(a.raw + b.raw - c.raw); };
+    return {{add_sub(lo.x, xf.p.x, r), add_sub(lo.y, xf.p.y, r)}, {add3(hi.x, xf.p.x, r), add3(hi.y, xf.p.y, r)}};
+  }
   lo = fast::add(lo, xf.p);
   hi = fast::add(hi, xf.p);
 #else
