@@ -461,25 +461,23 @@ void compute_body_extents(const World& world, int32_t body_index, Vec2 local_cen
   *out_max = max_extent;
 }
 
-namespace {
-
 /// (|d.x| + |d.y| + turn)·2 ≤ min_extent with fixed.h's saturating + and ·2
 /// (turn ≥ 0, min_extent ≥ 0), decided on exact integers: the saturating
-/// sums of non-negative terms are min(exact, max) and min_extent < max, so
-/// "saturated sum ≤ min_extent" is "exact sum ≤ min_extent", and 2·x ≤ m is
+/// sums of non-negative terms are min(exact, max), so for min_extent < max
+/// "saturated sum ≤ min_extent" is "exact sum ≤ min_extent" (and for
+/// min_extent = max the saturated sum always passes), and 2·x ≤ m is
 /// x ≤ ⌊m/2⌋. Each term is first tested against ⌊m/2⌋ (< 2^62), so the sum
 /// of three stays below 2^64. A negative turn or min_extent (impossible:
 /// both are lengths) answers false, which leaves the decision to the exact
 /// test after it, as the saturating form did.
-bool surely_slow(Vec2 d, Q32 turn, Q32 min_extent) {
+bool continuous_surely_slow(Vec2 d, Q32 turn, Q32 min_extent) {
   if (min_extent.raw < 0 || turn.raw < 0) return false;
+  if (min_extent.raw == INT64_MAX) return true;
   const uint64_t half = static_cast<uint64_t>(min_extent.raw) / 2;
   const uint64_t ux = detail::magnitude(d.x.raw), uy = detail::magnitude(d.y.raw);
   const uint64_t ut = static_cast<uint64_t>(turn.raw);
   return ux <= half && uy <= half && ut <= half && ux + uy + ut <= half;
 }
-
-}  // namespace
 
 void stage_continuous(World* world, StepContext* context) {
   context->continuous_hits = 0;
@@ -505,7 +503,7 @@ void stage_continuous(World* world, StepContext* context) {
         // |Δc| ≤ |Δx| + |Δy|: the square root only where that bound says "maybe fast".
         const Vec2 d = fast::sub(state.center, sim.center);
         const Q32 turn = fast::mul(fast::mul(body.max_extent, abs(state.angular_velocity)), c->dt);
-        if (surely_slow(d, turn, body.min_extent)) continue;
+        if (continuous_surely_slow(d, turn, body.min_extent)) continue;
         if ((length(d) + turn) * 2 > body.min_extent) fast[i] = body.bullet ? 2 : 1;
       }
     });

@@ -238,6 +238,12 @@ void compute_body_extents(const World& world, int32_t body_index, Vec2 local_cen
 /// Continuous collision: fast bodies (bullets also against dynamic bodies)
 /// stop at their first time of impact (continuous.cpp).
 void stage_continuous(World* world, StepContext* context);
+/// Continuous collision's first filter: true when (|d.x| + |d.y| + turn)·2 ≤
+/// min_extent with fixed.h's saturating operators, decided on exact
+/// integers (the body moved too little to be fast; d is the centre's move, a
+/// saturating difference; turn ≥ 0). False for a negative turn or
+/// min_extent, leaving the decision to the exact test (continuous.cpp).
+bool continuous_surely_slow(Vec2 d, Q32 turn, Q32 min_extent);
 
 /// Contacts from broad-phase pairs and narrow phase. Empty until the contact
 /// task.
