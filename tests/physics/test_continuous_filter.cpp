@@ -8,23 +8,13 @@
 
 #include <cstdint>
 
-#include "fixed/fault.h"
 #include "fixed/splitmix64.h"
+#include "ignore_fixed_faults.h"
 #include "physics/world.h"
 
 namespace {
 
 using namespace tandem;
-
-/// Builds that report range faults (debug, sanitizers) must not abort on the
-/// saturating reference below.
-struct IgnoreFaults {
-  FixedFaultHandler old = set_fixed_fault_handler([](FixedFault, const char*) {});
-  ~IgnoreFaults() { set_fixed_fault_handler(old); }
-  IgnoreFaults() = default;
-  IgnoreFaults(const IgnoreFaults&) = delete;
-  IgnoreFaults& operator=(const IgnoreFaults&) = delete;
-};
 
 /// A raw value: mostly near `typical`, sometimes an extreme or anything.
 int64_t raw_value(uint64_t* state, int64_t typical) {
@@ -40,7 +30,7 @@ int64_t raw_value(uint64_t* state, int64_t typical) {
 }  // namespace
 
 TEST_CASE("continuous collision's slow-body filter equals the saturating form", "[physics][continuous]") {
-  const IgnoreFaults ignore;
+  const test_support::IgnoreFixedFaults ignore;
   uint64_t state = 0x51077;
   const int64_t one = int64_t{1} << 32;
   int64_t slow = 0, not_slow = 0;

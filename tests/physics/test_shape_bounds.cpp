@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "fixed/fault.h"
 #include "fixed/splitmix64.h"
+#include "ignore_fixed_faults.h"
 #include "physics/shape.h"
 
 namespace {
@@ -48,20 +48,10 @@ ShapeGeometry box_geometry(int64_t a, int64_t b, int64_t radius, int32_t start) 
   return g;
 }
 
-/// Builds that report range faults (debug, sanitizers) take the loop for
-/// every box; the saturating cases must not abort them.
-struct IgnoreFaults {
-  FixedFaultHandler old = set_fixed_fault_handler([](FixedFault, const char*) {});
-  ~IgnoreFaults() { set_fixed_fault_handler(old); }
-  IgnoreFaults() = default;
-  IgnoreFaults(const IgnoreFaults&) = delete;
-  IgnoreFaults& operator=(const IgnoreFaults&) = delete;
-};
-
 }  // namespace
 
 TEST_CASE("compute_shape_aabb: a box's short path gives the corner loop's bits", "[shape][aabb]") {
-  const IgnoreFaults ignore;
+  const test_support::IgnoreFixedFaults ignore;
   Random rng{0xB0C5};
   const int64_t one = int64_t{1} << 32;
   for (int32_t k = 0; k < 200000; ++k) {
@@ -106,7 +96,7 @@ TEST_CASE("compute_shape_aabb gives the checked operators' bits for circles, cap
   // Covers the short paths of shape_api.cpp: a circle at its body's origin
   // (no rotation), one elsewhere, and the in-range tail (plain adds when
   // every operand is below 2^61) against the saturating adds out of range.
-  const IgnoreFaults ignore;
+  const test_support::IgnoreFixedFaults ignore;
   Random rng{0xB0C6};
   const int64_t one = int64_t{1} << 32;
   for (int32_t k = 0; k < 100000; ++k) {
