@@ -31,10 +31,15 @@
 # A target listed in tests/fuzz/known-crashes.txt (a crash in code another
 # change owns, saved as a .pending regression) reports a finding as "xfail"
 # instead of FAIL, and "XPASS" when it found nothing (remove its line then).
+# A run stopped by SIGINT or SIGTERM (Ctrl-C, kill, pkill fuzz_<target>)
+# before its time is up, with no new file under OUT/crashes/<target>/, is
+# reported as "stopped": not a finding (libFuzzer exits 72 after printing
+# "run interrupted" and its final statistics, which the row shows), but not
+# a full run either.
 # Exit status: 0 when no target found anything unexpected, 1 otherwise, 2 on
 # bad usage or a failed build. Prints "[fuzz.sh] result <target>
-# pass|FAIL|xfail|XPASS" per target (scripts/test.sh counts pass/XPASS as
-# passed, FAIL as failed, xfail as neither).
+# pass|FAIL|xfail|XPASS|stopped" per target (scripts/test.sh counts pass/XPASS
+# as passed, FAIL and stopped as failed, xfail as neither).
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 2
 
@@ -50,7 +55,7 @@ while [ $# -gt 0 ]; do
     --out) out=${2:-}; shift 2 ;;
     --no-build) build=0; shift ;;
     --make-seeds) make_seeds=1; shift ;;
-    -h|--help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -108,7 +113,7 @@ for t in "${targets[@]}"; do
   log=$out/$t.log
   mkdir -p "$work" "$crashes"
   args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
-        -artifact_prefix="$crashes/" -close_fd_mask=1)
+        -artifact_prefix="$crashes/" -close_fd_mask=1 -interrupted_exitcode=72)
   [ "$t" = scene ] && args+=(-dict=tests/fuzz/scene.dict)
   echo "[fuzz.sh] $t: ${seconds} s ($(date +%H:%M:%S))"
   before=$(ls "$crashes" | wc -l)
@@ -126,7 +131,12 @@ for t in "${targets[@]}"; do
   corpus_n=$(ls "$work" | wc -l)
   known=0
   grep -qE "^$t[[:space:]]" tests/fuzz/known-crashes.txt 2>/dev/null && known=1
-  if [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
+  if [ "$rc" -eq 72 ] && [ "$new" -eq 0 ] && grep -q 'libFuzzer: run interrupted' "$log"; then
+    # libFuzzer's exit status after SIGINT/SIGTERM (-interrupted_exitcode,
+    # 72 unless set): stopped from outside, nothing found in the part that ran.
+    result=stopped
+    echo "[fuzz.sh] $t: stopped by a signal after ${execs:-?} executions, no finding; log $log"
+  elif [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
     [ "$new" -gt 0 ] || new=1
     grep -E 'ERROR: |SUMMARY: |runtime error|fuzz invariant broken|deadly signal|Test unit written' "$log" | head -8
     echo "[fuzz.sh] $t: found something (exit $rc); log $log, inputs in $crashes/"

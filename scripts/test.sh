@@ -188,17 +188,23 @@ run_build() {
     bash scripts/fuzz.sh --no-build --seconds "${TANDEM_FUZZ_SLICE:-15}" --out "$dir/fuzz-slice" 2>&1 | tee "$log"
     t_tst=$(( $(now) - t0 ))
     echo "[test.sh] $name: fuzz slice: ${t_tst} s"
-    # pass/XPASS: passed; FAIL: failed; xfail (a crash listed in
-    # tests/fuzz/known-crashes.txt, owned by another change): neither.
+    # pass/XPASS: passed; FAIL: failed; stopped (interrupted by a signal,
+    # nothing found): failed, as the slice did not run; xfail (a crash listed
+    # in tests/fuzz/known-crashes.txt, owned by another change): neither.
     passed=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ (pass|XPASS)$' "$log")
     failed=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ FAIL$' "$log")
-    local xfail
+    local xfail stopped
     xfail=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ xfail$' "$log")
-    if [ $(( passed + failed + xfail )) -eq 0 ]; then
+    stopped=$(grep -cE '^\[fuzz.sh\] result [a-z_]+ stopped$' "$log")
+    if [ $(( passed + failed + xfail + stopped )) -eq 0 ]; then
       failed=1
       result="fuzz FAILED (no result)"
     elif [ "$failed" -gt 0 ]; then
+      failed=$(( failed + stopped ))
       result="fuzz FOUND CRASHES"
+    elif [ "$stopped" -gt 0 ]; then
+      failed=$stopped
+      result="fuzz INTERRUPTED ($stopped target(s) stopped by a signal)"
     elif [ "$xfail" -gt 0 ]; then
       result="ok, $xfail xfail"
     fi
