@@ -21,6 +21,11 @@
 #                 the bundled scenes, a replay recorded by the command line and
 #                 fuzz_make_seeds, then exit (TANDEM_BIN=path/to/tandem
 #                 uses that command line instead of building one here)
+# Every run appends a line to OUT/ledger.tsv (UTC start, target, seconds,
+# executions, exec/s, cov, ft, new crash files, result, the checkout's
+# commit); the summary's "in all" column adds up the executions of every run
+# of that target recorded there, i.e. of every run on the corpus kept under
+# OUT (issue 14's goal counts executions on one corpus).
 # Each target is seeded from tests/fuzz/corpus/<target>/ (scene also gets
 # tests/fuzz/scene.dict). A crash, leak, sanitizer report, timeout (> 10 s
 # per input) or out-of-memory (> 2 GB) stops that target and is kept as
@@ -55,7 +60,7 @@ while [ $# -gt 0 ]; do
     --out) out=${2:-}; shift 2 ;;
     --no-build) build=0; shift ;;
     --make-seeds) make_seeds=1; shift ;;
-    -h|--help) sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,47p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -99,6 +104,9 @@ fi
 
 mkdir -p "$out"
 summary=$out/summary.txt
+ledger=$out/ledger.tsv
+[ -f "$ledger" ] || printf 'start_utc\ttarget\tseconds\texecutions\texec_per_s\tcov\tft\tcrashes\tresult\tcommit\n' >"$ledger"
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 t_all=$(date +%s)
 rows=()
 found=0
@@ -116,6 +124,7 @@ for t in "${targets[@]}"; do
         -artifact_prefix="$crashes/" -close_fd_mask=1 -interrupted_exitcode=72)
   [ "$t" = scene ] && args+=(-dict=tests/fuzz/scene.dict)
   echo "[fuzz.sh] $t: ${seconds} s ($(date +%H:%M:%S))"
+  started=$(date -u '+%Y-%m-%dT%H:%M:%SZ')
   before=$(ls "$crashes" | wc -l)
   # Leaks are findings too; the first directory receives new inputs.
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
@@ -153,14 +162,17 @@ for t in "${targets[@]}"; do
   else
     result=pass
   fi
-  rows+=("$(printf '%-12s %14s %10s %8s %8s %8s %8s  %s' "$t" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" \
-    "$corpus_n" "$new" "$result")")
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$started" "$t" "$seconds" "${execs:-0}" "${rate:-?}" \
+    "${cov:-?}" "${ft:-?}" "$new" "$result" "$commit" >>"$ledger"
+  in_all=$(awk -F'\t' -v t="$t" 'NR > 1 && $2 == t && $4 ~ /^[0-9]+$/ { n += $4 } END { printf "%d", n }' "$ledger")
+  rows+=("$(printf '%-12s %14s %10s %8s %8s %8s %8s %14s  %s' "$t" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" \
+    "$corpus_n" "$new" "$in_all" "$result")")
   echo "[fuzz.sh] result $t $result"
 done
 
 {
   echo "fuzz.sh summary: $(date -u '+%Y-%m-%d %H:%M UTC'), ${seconds} s per target, $(nproc) cores ($(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1))"
-  printf '%-12s %14s %10s %8s %8s %8s %8s  %s\n' target execs exec/s cov ft corpus crashes result
+  printf '%-12s %14s %10s %8s %8s %8s %8s %14s  %s\n' target execs exec/s cov ft corpus crashes "in all" result
   for r in "${rows[@]}"; do echo "$r"; done
   echo "total $(( $(date +%s) - t_all )) s; logs and crashes under $out"
 } | tee "$summary"
