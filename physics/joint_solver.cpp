@@ -31,7 +31,8 @@
 // k_joint_slop is removed by moving the two poses directly: a non-linear
 // Gauss-Seidel position projection with the point-constraint mass,
 // c_A −= m_A⁻¹·P, q_A turned by −i_A⁻¹·(r_A × P), B the other way, with
-// P = K⁻¹·(gap − slop·n), in joint index order, up to k_joint_project_passes
+// P = K⁻¹·(gap − slop·n), scaled down when a side would turn by more than
+// k_max_projection_turn (1 rad), in joint index order, up to k_joint_project_passes
 // passes (a pass that moves nothing ends them). Velocities are not touched,
 // so no energy is injected (the pendulum's 60 s energy figure is unchanged)
 // and joints within the slop see no change at all. Measured
@@ -67,6 +68,22 @@ constexpr Q32 k_joint_slop_inner = Q32::from_ratio(2121, 1000000);
 /// Projection passes after continuous collision (at most; a pass that moves
 /// nothing ends them).
 constexpr int32_t k_joint_project_passes = 4;
+/// Largest turn one projection gives a body, rad (1). The correction is
+/// linearised: a body of small inertia whose anchor lies near its centre of
+/// mass would be asked to turn by radians to move that anchor by centimetres
+/// (a 30 kg body with a 7 mm radius of gyration, its anchor 1 cm from its
+/// centre: tens of radians for a 2 m gap), which is meaningless past a
+/// fraction of a radian; and integrate_rotation's first-order turn diverges
+/// past about √2 rad (|q|² = 1 + δ² beyond the reach of its two
+/// normalisation steps): the rotation grew every sub-step until it overflowed
+/// (random-world stress with joint inputs, seed 32; a fixed-point fault,
+/// which aborts a release build by default). A larger correction is scaled
+/// down as a whole (translation and turn alike) to this turn; the next passes
+/// and steps remove the rest. 1 rad, not less: the 50-link bridge of the
+/// golden scene joints_bridge_chain has projection turns between 0.5 and 1
+/// rad, and a smaller cap would change its chain (a first-order turn of 1 rad
+/// leaves |q|² about 22 % short of 1 for the next sub-steps to restore).
+constexpr Q32 k_max_projection_turn = Q32::from_raw(int64_t{1} << 32);
 
 /// One side of a joint during a pass: its state (a copy), written back only
 /// when the body is simulated.
@@ -517,16 +534,25 @@ bool project_revolute(const Joint& j, StepContext* ctx) {
   Q32 gap;
   const Vec2 n = length_and_normalize(an.d, &gap);
   if (gap <= k_joint_slop) return false;
-  const Vec2 impulse = -solve(point_mass(p, an.ra, an.rb), (gap - k_joint_slop) * n);
+  Vec2 impulse = -solve(point_mass(p, an.ra, an.rb), (gap - k_joint_slop) * n);
+  // The turns, i⁻¹·(r × P) (zero for a side that is not simulated: i⁻¹ = 0).
+  Q32 turn_a = p.ia * cross(an.ra, impulse), turn_b = p.ib * cross(an.rb, impulse);
+  const Q32 largest = max(abs(turn_a), abs(turn_b));
+  if (largest > k_max_projection_turn) {
+    // Scale the whole correction down to the largest turn (see its comment).
+    impulse = impulse * (k_max_projection_turn / largest);
+    turn_a = p.ia * cross(an.ra, impulse);
+    turn_b = p.ib * cross(an.rb, impulse);
+  }
   if (j.step_solver_a >= 0) {
     BodyState& s = ctx->states[j.step_solver_a];
     s.center = s.center - p.ma * impulse;
-    s.rotation = integrate_rotation(s.rotation, -(p.ia * cross(an.ra, impulse)));
+    s.rotation = integrate_rotation(s.rotation, -turn_a);
   }
   if (j.step_solver_b >= 0) {
     BodyState& s = ctx->states[j.step_solver_b];
     s.center = s.center + p.mb * impulse;
-    s.rotation = integrate_rotation(s.rotation, p.ib * cross(an.rb, impulse));
+    s.rotation = integrate_rotation(s.rotation, turn_b);
   }
   return true;
 }
