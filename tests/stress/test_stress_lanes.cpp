@@ -26,6 +26,7 @@ StressResult run_on(ContactSolverPath path, uint64_t seed) {
   config.ticks = 600;
   config.compare_broad_phases = false;
   config.check_restore = false;
+  config.joints = seed < 10;  // 34, 55, 94, 776: the worlds found without joint inputs (776 saturates)
   const StressResult r = tandem::stress::run_stress_world(config);
   tandem::set_contact_solver_path(saved);
   return r;
