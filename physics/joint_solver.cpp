@@ -32,8 +32,9 @@
 // Gauss-Seidel position projection with the point-constraint mass,
 // c_A −= m_A⁻¹·P, q_A turned by −i_A⁻¹·(r_A × P), B the other way, with
 // P = K⁻¹·(gap − slop·n), scaled down when a side would turn by more than
-// k_max_projection_turn (1 rad), in joint index order, up to k_joint_project_passes
-// passes (a pass that moves nothing ends them). Velocities are not touched,
+// k_max_projection_turn (1 rad), a turn above 1/16 rad taken exactly, in joint
+// index order, up to k_joint_project_passes passes (a pass that moves nothing
+// ends them). Velocities are not touched,
 // so no energy is injected (the pendulum's 60 s energy figure is unchanged)
 // and joints within the slop see no change at all. Measured
 // (tests/physics/test_joint.cpp ragdolls in a box,
@@ -73,17 +74,23 @@ constexpr int32_t k_joint_project_passes = 4;
 /// mass would be asked to turn by radians to move that anchor by centimetres
 /// (a 30 kg body with a 7 mm radius of gyration, its anchor 1 cm from its
 /// centre: tens of radians for a 2 m gap), which is meaningless past a
-/// fraction of a radian; and integrate_rotation's first-order turn diverges
-/// past about √2 rad (|q|² = 1 + δ² beyond the reach of its two
-/// normalisation steps): the rotation grew every sub-step until it overflowed
-/// (random-world stress with joint inputs, seed 32; a fixed-point fault,
-/// which aborts a release build by default). A larger correction is scaled
-/// down as a whole (translation and turn alike) to this turn; the next passes
-/// and steps remove the rest. 1 rad, not less: the 50-link bridge of the
-/// golden scene joints_bridge_chain has projection turns between 0.5 and 1
-/// rad, and a smaller cap would change its chain (a first-order turn of 1 rad
-/// leaves |q|² about 22 % short of 1 for the next sub-steps to restore).
+/// fraction of a radian; integrate_rotation's first-order turn even
+/// diverged past about √2 rad, and the rotation grew every sub-step until it
+/// overflowed (random-world stress with joint inputs, seed 32; a fixed-point
+/// fault, which aborts a release build by default). A larger correction is
+/// scaled down as a whole (translation and turn alike) to this turn; the
+/// next passes and steps remove the rest.
 constexpr Q32 k_max_projection_turn = Q32::from_raw(int64_t{1} << 32);
+/// Largest turn taken by integrate_rotation's first-order form (1/16 rad, as
+/// solver.cpp's polynomial path): its length error, about 0.42·δ⁸, is below
+/// a raw unit there. A larger turn is exact, rot_normalize(rot_from_angle(δ)
+/// · q), so no step ends with a rotation off unit length (a first-order turn
+/// of 0.35 rad leaves |q| about 5·10⁻⁵ from 1, beyond the 2^-16 ≈ 1.5·10⁻⁵
+/// that world_restore accepts: the snapshot of that step was refused;
+/// random-world stress with joint inputs, 10 of seeds 1-1,000). Changed the golden chains
+/// joints_ragdolls and joints_bridge_chain (2026-11-29), whose projections
+/// turn limbs and planks by more than 1/16 rad.
+constexpr Q32 k_small_projection_turn = Q32::from_raw(int64_t{1} << 28);
 
 /// One side of a joint during a pass: its state (a copy), written back only
 /// when the body is simulated.
@@ -544,15 +551,21 @@ bool project_revolute(const Joint& j, StepContext* ctx) {
     turn_a = p.ia * cross(an.ra, impulse);
     turn_b = p.ib * cross(an.rb, impulse);
   }
+  // q turned by `angle`: first-order when small, else exactly (see
+  // k_small_projection_turn).
+  const auto turn = [](Rot q, Q32 angle) {
+    if (abs(angle) <= k_small_projection_turn) return integrate_rotation(q, angle);
+    return rot_normalize(mul_rot(rot_from_angle(angle), q));
+  };
   if (j.step_solver_a >= 0) {
     BodyState& s = ctx->states[j.step_solver_a];
     s.center = s.center - p.ma * impulse;
-    s.rotation = integrate_rotation(s.rotation, -turn_a);
+    s.rotation = turn(s.rotation, -turn_a);
   }
   if (j.step_solver_b >= 0) {
     BodyState& s = ctx->states[j.step_solver_b];
     s.center = s.center + p.mb * impulse;
-    s.rotation = integrate_rotation(s.rotation, turn_b);
+    s.rotation = turn(s.rotation, turn_b);
   }
   return true;
 }
