@@ -88,9 +88,9 @@ struct StressResult {
   int32_t inputs_refused = 0;    ///< inputs the API refused with a Status (run 0)
   int32_t joints_created = 0;    ///< joints the API accepted (run 0)
   /// KNOWN ISSUE 8 (open): with joint inputs some worlds end a step with a
-  /// body far beyond the speed limits, a rotation off unit length or a body
-  /// out of the world (so the snapshot of that step is refused by
-  /// world_restore, or the body leaves), or report fixed-point faults; the
+  /// body far beyond the speed limits or out of the world (so the snapshot of
+  /// that step is refused by world_restore, or the body leaves), or report
+  /// fixed-point faults; the
   /// same world without joint inputs does not. Such a failure (any failure
   /// but a hash-chain difference, which always fails) is moved here: counted
   /// and listed, not failed, unless fail_on_joint_issues. Empty otherwise.

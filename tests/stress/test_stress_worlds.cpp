@@ -294,12 +294,11 @@ TEST_CASE("known issue 5: fixed-point overflow in the contact solve (stress seed
 
 // KNOWN ISSUE 8 (found 2026-11-29 when the generator gained joint inputs;
 // open): with joints, about 5 % of worlds (seeds 1-1,000 × 600 ticks, g++
-// release: see README "Range and limits") fail in ways the same worlds without joint inputs do not: a
-// body ends a step far beyond the speed limits (10^5-10^8 m/s; the joint
-// and contact solves run after the sub-step's speed clamp and nothing bounds
-// them), a rotation left off unit length by the revolute position pass (a
-// first-order turn of up to 1 rad), a body thrown out of the world or the
-// container, fixed-point faults in builds with fault checks. The snapshot
+// release: see README "Range and limits") fail in ways the same worlds
+// without joint inputs do not: a body ends a step far beyond the speed
+// limits (10^4-10^8 m/s; the joint and contact solves run after the
+// sub-step's speed clamp and nothing bounds them), a body thrown out of the
+// world or the container, fixed-point faults in builds with fault checks. The snapshot
 // of such a step is refused by world_restore (its values are outside the
 // ranges restore accepts), so a rollback game with joints can lose its
 // state. Seed 17 (600 ticks): a 12 kg body held by a distance joint and by
