@@ -7,6 +7,8 @@
 //   v ← v·fᵥ + Δv      fᵥ = 1/(1 + h·c_linear),  Δv = h·(s·g + F·(1/m))
 //   ω ← ω·f_ω + Δω     f_ω = 1/(1 + h·c_angular), Δω = h·(τ·(1/I))
 //   clamp |v| ≤ max linear speed, |ω| ≤ max angular speed (StepContext)
+//   (contact and joint solves)
+//   clamp again        (integrate positions: nothing moves faster)
 //   c ← c + h·v        (the centre of mass)
 //   q ← integrate_rotation(q, h·ω)   (skipped when ω = 0, so a body at rest
 //                                     keeps its rotation bit for bit)
@@ -38,7 +40,18 @@
 //
 // The speed clamp decides |v| > max exactly on 128-bit squares and then
 // scales v by max/|v| (one rounded division, two rounded products), so the
-// clamped speed is within a few raw units of the maximum.
+// clamped speed is within a few raw units of the maximum. It runs where
+// velocities are integrated, again before positions are integrated and when
+// finalize stores the velocities (a test |v.x| + |v.y| > max first, so a body
+// within the limits pays two compares): the contact and joint solves run
+// after the first clamp and nothing else bounds what they add. Without the
+// later clamps, joints fighting each other or a contact drove bodies to
+// 10^4-10^8 m/s, moved them that fast and stored it, beyond the 4 × limits
+// world_restore accepts, so a rollback could not restore that step
+// (random-world stress with joint inputs, known issue 8: 51 → 17 of seeds
+// 1-1,000 together with the joints' impulse bound). Changed the golden
+// chains random_mix, joints_ragdolls and joints_bridge_chain (2026-11-29),
+// where a solve leaves a limb or a small body above 100 rad/s.
 //
 // Workers (task.h): integration and finalize are per body, each body's work
 // reads and writes only its own records (finalize: its sim, its body's
@@ -225,10 +238,17 @@ void stage_integrate_positions(World* world, StepContext* context) {
   (void)world;
   const int32_t count = context->solver_body_count;
   const Q32 h = context->h;
+  const Q32 max_v = context->max_linear_speed;
+  const Q32 max_w = context->max_angular_speed;
   BodyState* states = context->states;
   parallel_for(context->tasks, "integrate_positions", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       BodyState& s = states[i];
+      // The solves may have gone past the limits (file comment).
+      if (abs(s.linear_velocity.x) + abs(s.linear_velocity.y) > max_v) {
+        s.linear_velocity = clamp_linear_speed(s.linear_velocity, max_v);
+      }
+      s.angular_velocity = clamp(s.angular_velocity, -max_w, max_w);
       // fast::: the checked operators' bits (integrate_rotation_fast).
       s.center = fast::mul_add(s.center, h, s.linear_velocity);
       if (s.angular_velocity == Q32::zero()) continue;
@@ -273,6 +293,8 @@ void stage_finalize_bodies(World* world, StepContext* context) {
   // Once, here: the blocks below write only their own bodies and shapes
   // (every block marking the shared flag was a data race, if a benign one).
   if (count > 0) broad_phase_mark_stale(world);
+  const Q32 max_v = context->max_linear_speed;
+  const Q32 max_w = context->max_angular_speed;
   parallel_for(context->tasks, "finalize_bodies", count, k_body_block, [=](int32_t begin, int32_t end) {
     for (int32_t i = begin; i < end; ++i) {
       const int32_t b = context->solver_to_body[i];
@@ -280,8 +302,10 @@ void stage_finalize_bodies(World* world, StepContext* context) {
       const BodyState& s = context->states[i];
       BodySim& sim = world->body_sims[bi];
       const Transform before = sim.transform;
-      sim.linear_velocity = s.linear_velocity;
-      sim.angular_velocity = s.angular_velocity;
+      // The last relax pass may have gone past the limits (file comment).
+      const bool over = abs(s.linear_velocity.x) + abs(s.linear_velocity.y) > max_v;
+      sim.linear_velocity = over ? clamp_linear_speed(s.linear_velocity, max_v) : s.linear_velocity;
+      sim.angular_velocity = clamp(s.angular_velocity, -max_w, max_w);
       sim.center = s.center;
       sim.transform.q = s.rotation;
       // fast::: the checked operators' bits. A centre of mass at the body

@@ -315,10 +315,13 @@ TEST_CASE("state validation: a world at the limits is accepted and steps without
   // (native __int128, unchecked in-range solver arithmetic) and
   // portable-int128 (wide.h limbs); debug and sanitizer builds check the
   // same value with fault reports on. Regenerate only in a commit that says
-  // why the simulation changed.
+  // why the simulation changed. 2026-11-29: the speed clamps before
+  // positions are integrated and when a step stores its velocities
+  // (solver.cpp, known issue 8): a 900 m/s ball hitting a 1 g body leaves it
+  // above the 1,000 m/s limit in the solve.
   const uint64_t hash = world_state_hash(w.id);
   INFO("at-the-limits world after 240 ticks: hash " << hash);
-  CHECK(hash == 14334883317436389445ull);
+  CHECK(hash == 1917204718635169861ull);
 }
 
 TEST_CASE("state validation: a replay whose keyframe has valid checksums and an inverted bound fails verify cleanly",

@@ -256,8 +256,12 @@ TEST_CASE("random worlds that used to overflow (seeds 94, 55, 9, 34) compute the
     uint64_t seed;
     uint64_t final_hash;
   };
-  for (const Expected& e : {Expected{94, 0xec0359867b9c1cd7ull}, Expected{55, 0xddbb7ca0af5c271full},
-                            Expected{9, 0x1949da1c8fde920cull}, Expected{34, 0xf8136bcdb4e964d2ull}}) {
+  // Re-recorded 2026-11-29 (session 14) for the speed clamps before
+  // positions are integrated and when a step stores its velocities
+  // (solver.cpp; known issue 8): all four worlds have bodies that a solve
+  // left above the limits.
+  for (const Expected& e : {Expected{94, 0x738798e3089ce1eaull}, Expected{55, 0xb331868b88b0463eull},
+                            Expected{9, 0x261997715df18461ull}, Expected{34, 0x085541583c07b6aeull}}) {
     StressConfig config;
     config.seed = e.seed;
     config.ticks = 600;
