@@ -1129,12 +1129,13 @@ const char* escape_kind_name(EscapeKind kind) {
 std::string describe(uint64_t seed, const StressResult& r) {
   char text[1536];
   std::snprintf(text, sizeof text,
-                "seed %" PRIu64 ": %s%s; %s world, container ±%d m; %d bodies created, %d destroyed, %d shapes, %d joints; "
-                "%d inputs applied, %d refused; %d steps; final hash %016" PRIx64,
+                "seed %" PRIu64 ": %s%s; %s world, container ±%d m; %d bodies created, %d destroyed, %d shapes, "
+                "%d joints; %d inputs applied, %d refused; %d steps; final hash %016" PRIx64,
                 seed, r.ok() ? "ok" : r.failure.c_str(),
                 (r.ok() && r.escapes != 0 && r.joint_issue.empty()
                      ? " (known escape, " + std::string(escape_kind_name(r.escape_kind)) + ": " + r.escape + ")"
-                     : (!r.joint_issue.empty() ? " (known issue 8, only with joint inputs: " + r.joint_issue + ")" : ""))
+                     : (!r.joint_issue.empty() ? " (known issue 8, only with joint inputs: " + r.joint_issue + ")"
+                                               : ""))
                     .c_str(),
                 r.fast ? "fast" : "slow", r.container_scale, r.bodies_created, r.bodies_destroyed,
                 r.shapes_created, r.joints_created, r.inputs_applied, r.inputs_refused, r.steps, r.final_hash);

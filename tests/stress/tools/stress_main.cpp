@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("summary: %" PRIu64 " worlds (seeds %" PRIu64 "-%" PRIu64 ") x %" PRIu64 " ticks, %" PRIu64
               " steps in all runs; %" PRIu64 " failed, %" PRId64 " faults, %" PRId64 " escapes; %" PRIu64
-              " bodies created, %" PRIu64 " joints created%s, %" PRIu64 " inputs applied, %" PRIu64 " refused; %.1f s\n",
+              " bodies created, %" PRIu64 " joints created%s, %" PRIu64 " inputs applied, %" PRIu64
+              " refused; %.1f s\n",
               worlds, first, first + worlds - 1, ticks, steps, failed, faults, escapes, created, joints_created,
               joints ? "" : " (joint inputs off)", applied, refused, seconds);
   std::printf("escapes by kind: slow world %" PRIu64 " (failures), fast world %" PRIu64 " (counted), body with chain "
