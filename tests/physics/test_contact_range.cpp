@@ -13,25 +13,13 @@
 
 #include "fixed/fault.h"
 #include "physics/tandem.h"
+#include "ignore_fixed_faults.h"
 #include "physics_test_support.h"
 
 using namespace tandem;
 using namespace tandem::test_support;
 
 namespace {
-
-int64_t g_faults = 0;
-void count_fault(FixedFault, const char*) { ++g_faults; }
-
-/// Counts fixed-point faults while alive (checks on) and restores the old
-/// handler.
-struct FaultCounter {
-  FixedFaultHandler old;
-  FaultCounter() : old(set_fixed_fault_handler(&count_fault)) { g_faults = 0; }
-  ~FaultCounter() { set_fixed_fault_handler(old); }
-  FaultCounter(const FaultCounter&) = delete;
-  FaultCounter& operator=(const FaultCounter&) = delete;
-};
 
 /// A static ground box whose top is y = 0, 2 × half_width long.
 void add_ground(WorldId w, Q32 half_width) {
@@ -68,7 +56,7 @@ TEST_CASE("contact range: a 1 g circle carrying a 2 km segment lands on the grou
           "[physics][contact][limits]") {
   // I = m·r²/2 ≈ 5e-8 kg·m² (I⁻¹ ≈ 2e7), contact points up to 1,000 m from
   // the centre: I⁻¹·r² ≈ 2e13, far above Q32's 2^31 ≈ 2.1e9.
-  FaultCounter faults;
+  CountFixedFaults faults;
   ScopedWorld world;
   add_ground(world.id, 5000_q32);
   const BodyId body = add_stick_body(world.id, {Q32::zero(), 2_q32}, 0.001_q32, 3.2_q32, 1000_q32);
@@ -88,7 +76,7 @@ TEST_CASE("contact range: a 1 g circle carrying a 2 km segment lands on the grou
     REQUIRE(std::abs(ld(body_angular_velocity(body))) <= 100.0L);
   }
   INFO("lowest segment end " << lowest << " m");
-  CHECK(g_faults == 0);
+  CHECK(faults.count() == 0);
   CHECK(lowest > -0.1L);  // the first touch at ~6 m/s: 7 cm in g++ release
   // It comes to rest on the ground: the segment ends at y ≈ 0, slow.
   const Transform xf = body_transform(body);

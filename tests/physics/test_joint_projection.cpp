@@ -15,34 +15,19 @@
 
 #include <cstdint>
 
-#include "fixed/fault.h"
+#include "ignore_fixed_faults.h"
 #include "physics/tandem.h"
 
 using namespace tandem;
 using namespace tandem::literals;
 
-namespace {
-
-int64_t g_faults = 0;
-void count_fault(FixedFault, const char*) { ++g_faults; }
-
-/// Counts fixed-point faults while alive (builds with fault checks) and
-/// restores the previous handler.
-struct FaultCounter {
-  FixedFaultHandler old;
-  FaultCounter() : old(set_fixed_fault_handler(&count_fault)) { g_faults = 0; }
-  ~FaultCounter() { set_fixed_fault_handler(old); }
-  FaultCounter(const FaultCounter&) = delete;
-  FaultCounter& operator=(const FaultCounter&) = delete;
-};
-
-}  // namespace
+using tandem::test_support::CountFixedFaults;
 
 TEST_CASE("joint: a revolute joint created metres from its anchor on a body of small inertia keeps the rotation "
           "unit and closes the gap",
           "[physics][joint]") {
   for (const Q32 gap : {0.5_q32, 2_q32, 5_q32}) {
-    FaultCounter faults;
+    CountFixedFaults faults;
     WorldDef wd = default_world_def();
     wd.gravity = Vec2{};
     Result<WorldId> w = create_world(wd);
@@ -79,8 +64,8 @@ TEST_CASE("joint: a revolute joint created metres from its anchor on a body of s
     }
     const Vec2 apart = joint_world_anchor_b(joint.value) - joint_world_anchor_a(joint.value);
     INFO("gap " << gap.to_double() << " m: worst |q|² − 1 " << worst_unit_error.to_double() << ", anchors "
-                << length(apart).to_double() << " m apart after 2 s, " << g_faults << " faults");
-    CHECK(g_faults == 0);
+                << length(apart).to_double() << " m apart after 2 s, " << faults.count() << " faults");
+    CHECK(faults.count() == 0);
     // Turns above 1/16 rad are exact and normalised, smaller ones first-order
     // with two normalisation steps: |q|² stays within raw units of 1 at the
     // end of every step (world_restore refuses more than 2^-16).
